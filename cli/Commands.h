@@ -1,0 +1,18 @@
+// The subcommands of the bundlelab CLI. Each registers its options on the app and returns the
+// action to run once parsing succeeded.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace bl::cli {
+
+using Action = std::function<int()>;
+
+void addRenderCommand(CLI::App& app, Action& action);
+void addInfoCommand(CLI::App& app, Action& action);
+void addModesCommand(CLI::App& app, Action& action);
+void addPlanCommand(CLI::App& app, Action& action);
+void addDevicesCommand(CLI::App& app, Action& action);
+
+} // namespace bl::cli

@@ -1,0 +1,45 @@
+// Rasterizes the scene from the camera into the G-buffer of Bindings.h (rgba32f attachments +
+// reversed depth). After record() the attachments are in VK_IMAGE_LAYOUT_GENERAL, ready to be read
+// as storage images by a shading pass.
+#pragma once
+
+#include "gpu/GpuScene.h"
+#include "vk/Descriptors.h"
+#include "vk/GpuTimer.h"
+#include "vk/Pipeline.h"
+
+#include <array>
+#include <shared/Bindings.h>
+
+namespace bl::gpu {
+
+class GBufferPass {
+public:
+    GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t width, std::uint32_t height);
+
+    // Updates the camera (host-visible, so only between submissions) and records the pass.
+    // `jitterNdc` shifts the sample position inside each pixel, in NDC units.
+    void record(VkCommandBuffer cmd, const shader::GpuCamera& camera, glm::vec2 jitterNdc, double time,
+                vk::GpuTimer* timer);
+
+    const vk::GpuImage& attachment(std::uint32_t i) const { return mAttachments[i]; }
+    VkBuffer cameraBuffer() const { return mCamera.get(); }
+    std::uint32_t width() const { return mWidth; }
+    std::uint32_t height() const { return mHeight; }
+
+private:
+    const GpuScene* mScene;
+    std::uint32_t mWidth, mHeight;
+    std::array<vk::GpuImage, shader::kGBufferAttachmentCount> mAttachments;
+    vk::GpuImage mDepth;
+    vk::Buffer mCamera;
+    vk::DescriptorSetLayout mFrameLayout;
+    vk::DescriptorSetLayout mMaterialLayout;
+    vk::DescriptorPool mPool;
+    VkDescriptorSet mFrameSet = VK_NULL_HANDLE;
+    std::vector<VkDescriptorSet> mMaterialSets;
+    vk::PipelineLayout mPipelineLayout;
+    vk::Pipeline mPipeline;
+};
+
+} // namespace bl::gpu

@@ -1,0 +1,25 @@
+// What a mesh file (OBJ+MTL or PLY) yields: meshes split by material, the materials and textures
+// they use (mesh.material indexes `materials`; material.albedoTexture indexes `textures`).
+#pragma once
+
+#include "scene/Material.h"
+#include "scene/Mesh.h"
+
+#include <string>
+#include <vector>
+
+namespace bl {
+
+struct MeshFile {
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<glm::vec3> materialEmission; // MTL Ke per material
+};
+
+MeshFile loadObj(const std::string& path);
+MeshFile loadPly(const std::string& path);
+// By extension (.obj or .ply, any case).
+MeshFile loadMeshFile(const std::string& path);
+
+} // namespace bl

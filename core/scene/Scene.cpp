@@ -1,0 +1,113 @@
+#include "scene/Scene.h"
+
+#include <sstream>
+
+namespace bl {
+
+std::size_t Scene::triangleCount() const {
+    std::size_t n = 0;
+    for (const Mesh& m : meshes) {
+        n += m.triangles.size();
+    }
+    return n;
+}
+
+Bounds Scene::bounds() const {
+    Bounds b;
+    for (const Mesh& m : meshes) {
+        Bounds local;
+        for (const glm::vec3& p : m.positions) {
+            local.extend(p);
+        }
+        if (!m.animation.animated()) {
+            b.extend(local);
+            continue;
+        }
+        for (const RigidKeyframe& k : m.animation.keys()) {
+            glm::mat4 t = m.animation.at(k.time);
+            for (int c = 0; c < 8; ++c) {
+                glm::vec3 corner((c & 1) ? local.hi.x : local.lo.x, (c & 2) ? local.hi.y : local.lo.y,
+                                 (c & 4) ? local.hi.z : local.lo.z);
+                b.extend(glm::vec3(t * glm::vec4(corner, 1.0f)));
+            }
+        }
+    }
+    return b;
+}
+
+SceneFeatures Scene::features() const {
+    SceneFeatures f;
+    f.triangles = triangleCount();
+    f.meshes = meshes.size();
+    f.materials = materials.size();
+    f.bounds = bounds();
+    for (const Material& m : materials) {
+        f.glossy |= m.glossy();
+        f.anisotropic |= m.glossy() && m.anisotropic();
+        f.textured |= m.albedoTexture >= 0;
+    }
+    f.environment = environment.present;
+    f.environmentMap = environment.hasMap();
+    for (const Light& l : lights) {
+        (l.type == Light::Type::Point ? f.pointLights : f.spotLights)++;
+    }
+    f.animated = camera.animated();
+    for (const Mesh& m : meshes) {
+        if (m.emissive()) {
+            ++f.emissiveMeshes;
+            f.emissiveTriangles += m.triangles.size();
+        }
+        f.animated |= m.animation.animated();
+    }
+    return f;
+}
+
+std::string SceneFeatures::describe() const {
+    std::ostringstream s;
+    auto yesNo = [](bool b) { return b ? "yes" : "no"; };
+    s << "triangles        " << triangles << "\n"
+      << "meshes           " << meshes << "\n"
+      << "materials        " << materials << " (glossy: " << yesNo(glossy)
+      << ", anisotropic: " << yesNo(anisotropic) << ", textured: " << yesNo(textured) << ")\n";
+    if (bounds.empty()) {
+        s << "bounds           empty\n";
+    } else {
+        s << "bounds           [" << bounds.lo.x << ", " << bounds.lo.y << ", " << bounds.lo.z << "] .. ["
+          << bounds.hi.x << ", " << bounds.hi.y << ", " << bounds.hi.z << "]  (radius " << bounds.radius()
+          << ")\n";
+    }
+    s << "point lights     " << pointLights << "\n"
+      << "spot lights      " << spotLights << "\n"
+      << "emissive meshes  " << emissiveMeshes << " (" << emissiveTriangles << " triangles)\n"
+      << "environment      " << (environmentMap ? "map" : environment ? "constant" : "none") << "\n"
+      << "animated         " << yesNo(animated) << "\n";
+    return s.str();
+}
+
+void scaleScene(Scene& scene, float factor) {
+    for (Mesh& m : scene.meshes) {
+        for (glm::vec3& p : m.positions) {
+            p *= factor;
+        }
+        RigidAnimation scaled;
+        for (RigidKeyframe k : m.animation.keys()) {
+            k.translate *= factor;
+            scaled.addKey(k);
+        }
+        m.animation = scaled;
+    }
+    for (Light& l : scene.lights) {
+        l.position *= factor;
+        l.intensity *= factor * factor;
+    }
+    auto scalePose = [factor](CameraPose& p) {
+        p.position *= factor;
+        p.target *= factor;
+    };
+    scalePose(scene.camera.pose);
+    for (CameraKeyframe& k : scene.camera.keys) {
+        scalePose(k.pose);
+    }
+}
+
+} // namespace bl

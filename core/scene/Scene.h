@@ -1,0 +1,45 @@
+// The scene model shared by every renderer: meshes in world units, materials, lights, camera,
+// environment, and keyframed rigid animation. Loaders fill it; nothing renders from files.
+#pragma once
+
+#include "base/Bounds.h"
+#include "scene/Camera.h"
+#include "scene/Environment.h"
+#include "scene/Light.h"
+#include "scene/Material.h"
+#include "scene/Mesh.h"
+#include "scene/SceneFeatures.h"
+
+#include <string>
+#include <vector>
+
+namespace bl {
+
+struct LoadStats {
+    std::size_t degenerateTriangles = 0;
+    std::size_t duplicateTriangles = 0;
+    std::size_t repairedNormals = 0;
+    std::size_t meshesWithGeneratedNormals = 0;
+};
+
+struct Scene {
+    std::string path; // the file it was loaded from ("" if built in code)
+    Camera camera;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<Mesh> meshes;
+    std::vector<Light> lights;
+    Environment environment;
+    LoadStats loadStats;
+
+    std::size_t triangleCount() const;
+    // Bounds of all geometry over all keyframes (at each key's transform).
+    Bounds bounds() const;
+    SceneFeatures features() const;
+};
+
+// Multiplies every length by `factor` and light intensities by factor^2, so that radiance (and
+// therefore every image) stays the same: the check that nothing depends on absolute scale.
+void scaleScene(Scene& scene, float factor);
+
+} // namespace bl

@@ -1,0 +1,32 @@
+// What a scene contains and needs. Modes plan their passes from it and skip what is not needed.
+#pragma once
+
+#include "base/Bounds.h"
+
+#include <cstddef>
+#include <string>
+
+namespace bl {
+
+struct SceneFeatures {
+    std::size_t triangles = 0;
+    std::size_t meshes = 0;
+    std::size_t materials = 0;
+    Bounds bounds;
+    bool glossy = false;      // any material with a specular lobe
+    bool anisotropic = false; // any Ashikhmin-Shirley material
+    bool textured = false;    // any albedo texture
+    bool environment = false; // any light from infinity
+    bool environmentMap = false;
+    std::size_t pointLights = 0;
+    std::size_t spotLights = 0;
+    std::size_t emissiveMeshes = 0;
+    std::size_t emissiveTriangles = 0;
+    bool animated = false; // any keyframed mesh or camera
+
+    std::size_t shadowCastingLights() const { return pointLights + spotLights; }
+    // Human-readable multi-line summary (for `bundlelab info`).
+    std::string describe() const;
+};
+
+} // namespace bl

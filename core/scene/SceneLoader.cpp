@@ -1,0 +1,376 @@
+#include "scene/SceneLoader.h"
+
+#include "base/Error.h"
+#include "base/Log.h"
+#include "config/StrictToml.h"
+#include "image/ImageIO.h"
+#include "scene/MeshCleanup.h"
+#include "scene/MeshFile.h"
+#include "scene/MtlLoader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+
+namespace fs = std::filesystem;
+
+namespace bl {
+namespace {
+
+// Largest Phong / Ashikhmin-Shirley exponent: beyond it the lobe is a mirror in float precision.
+constexpr double kMaxExponent = 1.0e6;
+
+std::string resolveFile(StrictTable& t, const std::string& key) {
+    std::string name = t.string(key);
+    fs::path base = fs::path(t.file()).parent_path();
+    fs::path p = base / name;
+    if (!fs::is_regular_file(p)) {
+        t.fail(key, "file '" + name + "' not found (looked for " + p.string() + ")");
+    }
+    return p.string();
+}
+
+void requireRange(StrictTable& t, const std::string& key, glm::vec3 v, float lo, float hi) {
+    for (int i = 0; i < 3; ++i) {
+        if (v[i] < lo || v[i] > hi) {
+            t.fail(key, "value " + formatNumber(v[i]) + " outside [" + formatNumber(lo) + ", " +
+                            formatNumber(hi) + "]");
+        }
+    }
+}
+
+void requireNonNegative(StrictTable& t, const std::string& key, glm::vec3 v) {
+    requireRange(t, key, v, 0.0f, std::numeric_limits<float>::max());
+}
+
+glm::vec3 unitDirection(StrictTable& t, const std::string& key, glm::vec3 v) {
+    float len = glm::length(v);
+    if (!(len > 0.0f)) {
+        t.fail(key, "direction must not be zero");
+    }
+    return v / len;
+}
+
+CameraPose readPose(StrictTable& t, const CameraPose& fallback) {
+    CameraPose p;
+    p.position = t.vec3("position", fallback.position);
+    p.target = t.vec3("target", fallback.target);
+    p.up = t.vec3("up", fallback.up);
+    glm::vec3 forward = p.target - p.position;
+    if (!(glm::length(forward) > 0.0f)) {
+        t.fail("target", "camera target equals its position");
+    }
+    if (!(glm::length(glm::cross(glm::normalize(forward), p.up)) > 1e-6f)) {
+        t.fail("up", "up vector is zero or parallel to the viewing direction");
+    }
+    return p;
+}
+
+std::vector<double> readKeyTimes(std::vector<StrictTable>& keys) {
+    std::vector<double> times;
+    for (StrictTable& k : keys) {
+        double time = k.number("time");
+        if (!times.empty() && time <= times.back()) {
+            k.fail("time", "keyframe times must increase (" + formatNumber(time) + " after " +
+                               formatNumber(times.back()) + ")");
+        }
+        times.push_back(time);
+    }
+    return times;
+}
+
+void readCamera(StrictTable& t, Camera& cam) {
+    cam.pose = readPose(t, cam.pose);
+    cam.fovDegrees = static_cast<float>(t.number("fov", cam.fovDegrees));
+    if (!(cam.fovDegrees > 0.0f && cam.fovDegrees < 180.0f)) {
+        t.fail("fov", "value " + formatNumber(cam.fovDegrees) + " outside (0, 180) degrees");
+    }
+    std::string axis = t.string("fov_axis", "x");
+    if (axis != "x" && axis != "y") {
+        t.fail("fov_axis", "expected \"x\" or \"y\", got \"" + axis + "\"");
+    }
+    cam.fovAxis = axis == "x" ? FovAxis::X : FovAxis::Y;
+    if (t.has("resolution")) {
+        cam.resolution = t.ivec2("resolution");
+        for (int i = 0; i < 2; ++i) {
+            if (cam.resolution[i] <= 0 || cam.resolution[i] > kMaxResolution) {
+                t.fail("resolution", "value " + std::to_string(cam.resolution[i]) + " outside [1, " +
+                                         std::to_string(kMaxResolution) + "]");
+            }
+        }
+    }
+    std::vector<StrictTable> keys = t.tables("keyframe");
+    std::vector<double> times = readKeyTimes(keys);
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        cam.keys.push_back({times[i], readPose(keys[i], cam.pose)});
+        keys[i].finish();
+    }
+    t.finish();
+}
+
+Material readMaterial(StrictTable& t, std::vector<Texture>& textures) {
+    Material m;
+    m.name = t.string("name");
+    m.albedo = t.vec3("albedo", m.albedo);
+    requireRange(t, "albedo", m.albedo, 0.0f, 1.0f);
+    m.specular = t.vec3("specular", m.specular);
+    requireRange(t, "specular", m.specular, 0.0f, 1.0f);
+    for (int i = 0; i < 3; ++i) {
+        if (m.albedo[i] + m.specular[i] > 1.0f + 1e-6f) {
+            log::warn(t.file() + ":" + std::to_string(t.line("specular")) + ": material '" + m.name +
+                      "': albedo + specular > 1 reflects more energy than it receives");
+            break;
+        }
+    }
+    auto exponent = [&](const std::string& key, double fallback) {
+        double e = t.number(key, fallback);
+        if (!(e > 0.0 && e <= kMaxExponent)) {
+            t.fail(key, "value " + formatNumber(e) + " outside (0, " + formatNumber(kMaxExponent) + "]");
+        }
+        return static_cast<float>(e);
+    };
+    if (t.has("exponent") && (t.has("exponent_u") || t.has("exponent_v"))) {
+        t.fail("exponent", "give either exponent or exponent_u/exponent_v, not both");
+    }
+    m.exponentU = m.exponentV = exponent("exponent", 1.0);
+    if (t.has("exponent_u") || t.has("exponent_v")) {
+        m.exponentU = exponent("exponent_u", 1.0);
+        m.exponentV = exponent("exponent_v", m.exponentU);
+    }
+    if (t.has("albedo_texture")) {
+        std::string path = resolveFile(t, "albedo_texture");
+        m.albedoTexture = static_cast<int>(textures.size());
+        textures.push_back({path, readRgba8(path)});
+    }
+    t.finish();
+    return m;
+}
+
+glm::mat4 readStaticTransform(StrictTable& t) {
+    glm::vec3 translate = t.vec3("translate", glm::vec3(0.0f));
+    glm::vec3 rotate = t.vec3("rotate", glm::vec3(0.0f));
+    glm::vec3 scale(1.0f);
+    if (t.has("scale")) {
+        scale = t.isArray("scale") ? t.vec3("scale") : glm::vec3(static_cast<float>(t.number("scale")));
+        requireRange(t, "scale", scale, 1e-30f, std::numeric_limits<float>::max());
+    }
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), translate) * glm::mat4_cast(rotationFromEulerDegrees(rotate)) *
+                  glm::scale(glm::mat4(1.0f), scale);
+    return m;
+}
+
+void bakeTransform(Mesh& mesh, const glm::mat4& m) {
+    glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
+    for (glm::vec3& p : mesh.positions) {
+        p = glm::vec3(m * glm::vec4(p, 1.0f));
+    }
+    for (glm::vec3& n : mesh.normals) {
+        n = normalMatrix * n;
+    }
+}
+
+void addMeshFile(Scene& scene, MeshFile file, const std::string& context,
+                 const std::optional<std::uint32_t>& materialOverride,
+                 const std::optional<glm::vec3>& emissionOverride, const glm::mat4& transform,
+                 const RigidAnimation& animation) {
+    const std::uint32_t materialBase = static_cast<std::uint32_t>(scene.materials.size());
+    const int textureBase = static_cast<int>(scene.textures.size());
+    if (!materialOverride) {
+        for (Material& m : file.materials) {
+            if (m.albedoTexture >= 0) {
+                m.albedoTexture += textureBase;
+            }
+            scene.materials.push_back(m);
+        }
+        for (Texture& t : file.textures) {
+            scene.textures.push_back(std::move(t));
+        }
+    }
+    for (Mesh& mesh : file.meshes) {
+        bakeTransform(mesh, transform);
+        CleanupStats stats = cleanupMesh(mesh);
+        scene.loadStats.degenerateTriangles += stats.degenerateTriangles;
+        scene.loadStats.duplicateTriangles += stats.duplicateTriangles;
+        scene.loadStats.repairedNormals += stats.repairedNormals;
+        scene.loadStats.meshesWithGeneratedNormals += stats.generatedNormals;
+        if (stats.degenerateTriangles || stats.duplicateTriangles) {
+            log::info(context + ": " + mesh.name + ": dropped " + std::to_string(stats.degenerateTriangles) +
+                      " degenerate and " + std::to_string(stats.duplicateTriangles) + " duplicate triangles");
+        }
+        if (mesh.triangles.empty()) {
+            continue;
+        }
+        mesh.material = materialOverride ? *materialOverride : materialBase + mesh.material;
+        if (emissionOverride) {
+            mesh.emission = *emissionOverride;
+        }
+        mesh.animation = animation;
+        scene.meshes.push_back(std::move(mesh));
+    }
+}
+
+void readMesh(StrictTable& t, Scene& scene, const std::map<std::string, std::uint32_t>& materialOf) {
+    std::string path = resolveFile(t, "file");
+    std::optional<std::uint32_t> material;
+    if (t.has("material")) {
+        std::string name = t.string("material");
+        auto it = materialOf.find(name);
+        if (it == materialOf.end()) {
+            t.fail("material", "no [[material]] named '" + name + "'");
+        }
+        material = it->second;
+    }
+    std::optional<glm::vec3> emission;
+    if (t.has("emission")) {
+        emission = t.vec3("emission");
+        requireNonNegative(t, "emission", *emission);
+    }
+    glm::mat4 transform = readStaticTransform(t);
+    RigidAnimation animation;
+    std::vector<StrictTable> keys = t.tables("keyframe");
+    std::vector<double> times = readKeyTimes(keys);
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        RigidKeyframe k;
+        k.time = times[i];
+        k.translate = keys[i].vec3("translate", glm::vec3(0.0f));
+        k.rotation = rotationFromEulerDegrees(keys[i].vec3("rotate", glm::vec3(0.0f)));
+        animation.addKey(k);
+        keys[i].finish();
+    }
+    t.finish();
+    MeshFile file;
+    try {
+        file = loadMeshFile(path);
+    } catch (const Error& e) {
+        throw Error(std::string(e.what()) + "\n  (loaded from " + t.file() + ":" + std::to_string(t.line("file")) + ")");
+    }
+    addMeshFile(scene, std::move(file), t.file(), material, emission, transform, animation);
+}
+
+Light readLight(StrictTable& t) {
+    Light l;
+    std::string type = t.string("type", "point");
+    if (type != "point" && type != "spot") {
+        t.fail("type", "expected \"point\" or \"spot\", got \"" + type + "\"");
+    }
+    l.type = type == "point" ? Light::Type::Point : Light::Type::Spot;
+    l.position = t.vec3("position");
+    l.intensity = t.vec3("intensity");
+    requireNonNegative(t, "intensity", l.intensity);
+    if (l.type == Light::Type::Spot) {
+        l.direction = unitDirection(t, "direction", t.vec3("direction"));
+        l.coneAngleDegrees = static_cast<float>(t.number("cone_angle"));
+        if (!(l.coneAngleDegrees > 0.0f && l.coneAngleDegrees <= 180.0f)) {
+            t.fail("cone_angle", "value " + formatNumber(l.coneAngleDegrees) + " outside (0, 180] degrees");
+        }
+        l.falloffDegrees = static_cast<float>(t.number("falloff", 0.0));
+        if (!(l.falloffDegrees >= 0.0f && l.falloffDegrees <= l.coneAngleDegrees)) {
+            t.fail("falloff", "value " + formatNumber(l.falloffDegrees) + " outside [0, cone_angle]");
+        }
+    }
+    t.finish();
+    return l;
+}
+
+void readEnvironment(StrictTable& t, Environment& env) {
+    env.present = true;
+    if (t.has("file") == t.has("radiance")) {
+        t.fail("", "give exactly one of 'file' or 'radiance'");
+    }
+    if (t.has("file")) {
+        env.file = resolveFile(t, "file");
+        env.map = readImage(env.file);
+        for (const glm::vec3& p : env.map.pixels()) {
+            if (p.x < 0.0f || p.y < 0.0f || p.z < 0.0f) {
+                t.fail("file", "environment map has negative radiance");
+            }
+        }
+    } else {
+        env.radiance = t.vec3("radiance");
+        requireNonNegative(t, "radiance", env.radiance);
+    }
+    env.scale = static_cast<float>(t.number("scale", 1.0));
+    if (!(env.scale >= 0.0f)) {
+        t.fail("scale", "value " + formatNumber(env.scale) + " is negative");
+    }
+    env.rotationDegrees = static_cast<float>(t.number("rotation", 0.0));
+    t.finish();
+}
+
+Scene loadTomlScene(const std::string& path) {
+    TomlDocument doc(path);
+    StrictTable root = doc.root();
+    Scene scene;
+    scene.path = path;
+
+    std::map<std::string, std::uint32_t> materialOf;
+    for (StrictTable& t : root.tables("material")) {
+        Material m = readMaterial(t, scene.textures);
+        if (!materialOf.emplace(m.name, static_cast<std::uint32_t>(scene.materials.size())).second) {
+            t.fail("name", "duplicate material name '" + m.name + "'");
+        }
+        scene.materials.push_back(m);
+    }
+    for (StrictTable& t : root.tables("mesh")) {
+        readMesh(t, scene, materialOf);
+    }
+    for (StrictTable& t : root.tables("light")) {
+        scene.lights.push_back(readLight(t));
+    }
+    if (auto env = root.table("environment")) {
+        readEnvironment(*env, scene.environment);
+    }
+    if (auto cam = root.table("camera")) {
+        readCamera(*cam, scene.camera);
+    } else {
+        scene.camera = fitCamera(scene.bounds(), {kDefaultResolution, kDefaultResolution});
+    }
+    root.finish();
+    if (scene.meshes.empty()) {
+        log::warn(path + ": the scene has no triangles");
+    }
+    return scene;
+}
+
+Scene loadBareMesh(const std::string& path) {
+    Scene scene;
+    scene.path = path;
+    addMeshFile(scene, loadMeshFile(path), path, std::nullopt, std::nullopt, glm::mat4(1.0f), {});
+    Bounds b = scene.bounds();
+    scene.camera = fitCamera(b, {kDefaultResolution, kDefaultResolution});
+    if (scene.features().emissiveMeshes == 0) {
+        // Something must light a bare mesh: a headlight giving unit irradiance at the centre, and
+        // a white sky for the modes that use environment light.
+        Light head;
+        head.position = scene.camera.pose.position;
+        float d = glm::length(scene.camera.pose.position - b.center());
+        head.intensity = glm::vec3(d * d);
+        scene.lights.push_back(head);
+        scene.environment.present = true;
+        scene.environment.radiance = glm::vec3(1.0f);
+        log::info(path + ": no emitters; added a headlight and a constant white environment");
+    }
+    return scene;
+}
+
+} // namespace
+
+Scene loadScene(const std::string& path) {
+    if (!fs::is_regular_file(path)) {
+        throw Error(path + ": file not found");
+    }
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    Scene scene = ext == ".toml" ? loadTomlScene(path) : loadBareMesh(path);
+    const LoadStats& s = scene.loadStats;
+    if (s.degenerateTriangles || s.duplicateTriangles || s.repairedNormals) {
+        log::info(path + ": dropped " + std::to_string(s.degenerateTriangles) + " degenerate and " +
+                  std::to_string(s.duplicateTriangles) + " duplicate triangles, repaired " +
+                  std::to_string(s.repairedNormals) + " normals");
+    }
+    return scene;
+}
+
+} // namespace bl

@@ -1,0 +1,353 @@
+#include "vk/Context.h"
+
+#include "base/Error.h"
+#include "base/Log.h"
+#include "vk/Check.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace bl::vk {
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+// One submission waits at most this long: far beyond any pass, short enough to report a hang.
+constexpr std::uint64_t kFenceTimeoutNs = 600ull * 1000 * 1000 * 1000;
+
+std::string versionString(std::uint32_t v) {
+    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
+           std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+const char* typeName(VkPhysicalDeviceType t) {
+    switch (t) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+    default: return "other";
+    }
+}
+
+int preference(VkPhysicalDeviceType t) {
+    switch (t) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 4;
+    default: return 3;
+    }
+}
+
+struct Candidate {
+    VkPhysicalDevice device;
+    DeviceInfo info;
+    VkPhysicalDeviceType type;
+    std::uint32_t queueFamily;
+};
+
+std::vector<Candidate> candidates(VkInstance instance) {
+    std::uint32_t n = 0;
+    BL_VK_CHECK(vkEnumeratePhysicalDevices(instance, &n, nullptr));
+    std::vector<VkPhysicalDevice> devices(n);
+    BL_VK_CHECK(vkEnumeratePhysicalDevices(instance, &n, devices.data()));
+    std::vector<Candidate> out;
+    for (VkPhysicalDevice d : devices) {
+        VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+        VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
+        vkGetPhysicalDeviceProperties2(d, &props);
+        if (props.properties.apiVersion < VK_API_VERSION_1_3) {
+            continue;
+        }
+        std::uint32_t qn = 0;
+        vkGetPhysicalDeviceQueueFamilyProperties(d, &qn, nullptr);
+        std::vector<VkQueueFamilyProperties> families(qn);
+        vkGetPhysicalDeviceQueueFamilyProperties(d, &qn, families.data());
+        std::uint32_t family = UINT32_MAX;
+        for (std::uint32_t i = 0; i < qn; ++i) {
+            VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+            if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0) {
+                family = i;
+                break;
+            }
+        }
+        if (family == UINT32_MAX) {
+            continue;
+        }
+        Candidate c{d, {}, props.properties.deviceType, family};
+        c.info.index = static_cast<std::uint32_t>(out.size());
+        c.info.name = props.properties.deviceName;
+        c.info.type = typeName(props.properties.deviceType);
+        c.info.driverName = driver.driverName;
+        c.info.driverInfo = driver.driverInfo;
+        c.info.apiVersion = versionString(props.properties.apiVersion);
+        out.push_back(c);
+    }
+    return out;
+}
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+    return s;
+}
+
+const Candidate& choose(const std::vector<Candidate>& list, const std::string& wanted) {
+    if (list.empty()) {
+        throw Error("no Vulkan 1.3 device found (is mesa-vulkan-drivers installed?)");
+    }
+    if (wanted.empty()) {
+        return *std::min_element(list.begin(), list.end(), [](const Candidate& a, const Candidate& b) {
+            return preference(a.type) < preference(b.type);
+        });
+    }
+    std::string names;
+    for (const Candidate& c : list) {
+        names += "\n  " + std::to_string(c.info.index) + ": " + c.info.name;
+    }
+    if (std::all_of(wanted.begin(), wanted.end(), [](unsigned char ch) { return std::isdigit(ch); })) {
+        std::size_t i = std::stoul(wanted);
+        if (i >= list.size()) {
+            throw Error("--device " + wanted + ": no such device; available:" + names);
+        }
+        return list[i];
+    }
+    for (const Candidate& c : list) {
+        if (lower(c.info.name).find(lower(wanted)) != std::string::npos) {
+            return c;
+        }
+    }
+    throw Error("--device '" + wanted + "': no device name contains it; available:" + names);
+}
+
+bool layerAvailable(const char* name) {
+    std::uint32_t n = 0;
+    vkEnumerateInstanceLayerProperties(&n, nullptr);
+    std::vector<VkLayerProperties> layers(n);
+    vkEnumerateInstanceLayerProperties(&n, layers.data());
+    return std::any_of(layers.begin(), layers.end(),
+                       [name](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+VkInstance createInstance(bool validation) {
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "bundlelab";
+    app.pEngineName = "bundlelab";
+    app.apiVersion = VK_API_VERSION_1_3;
+    std::vector<const char*> layers, extensions;
+    if (validation) {
+        if (!layerAvailable(kValidationLayer)) {
+            throw Error(std::string("validation requested but ") + kValidationLayer +
+                        " is not installed (apt install vulkan-validationlayers)");
+        }
+        layers.push_back(kValidationLayer);
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    }
+    VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    info.pApplicationInfo = &app;
+    info.enabledLayerCount = static_cast<std::uint32_t>(layers.size());
+    info.ppEnabledLayerNames = layers.data();
+    info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+    info.ppEnabledExtensionNames = extensions.data();
+    VkInstance instance = VK_NULL_HANDLE;
+    BL_VK_CHECK(vkCreateInstance(&info, nullptr, &instance));
+    return instance;
+}
+
+} // namespace
+
+std::string DeviceInfo::describe() const {
+    return name + " (" + type + "), driver " + driverName + " " + driverInfo + ", Vulkan " + apiVersion;
+}
+
+std::vector<DeviceInfo> Context::listDevices() {
+    VkInstance instance = createInstance(false);
+    std::vector<DeviceInfo> out;
+    try {
+        for (const Candidate& c : candidates(instance)) {
+            out.push_back(c.info);
+        }
+    } catch (...) {
+        vkDestroyInstance(instance, nullptr);
+        throw;
+    }
+    vkDestroyInstance(instance, nullptr);
+    return out;
+}
+
+VkBool32 Context::onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+                            const VkDebugUtilsMessengerCallbackDataEXT* data, void* self) {
+    auto* ctx = static_cast<Context*>(self);
+    std::string message = data && data->pMessage ? data->pMessage : "(no message)";
+    if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
+        std::lock_guard lock(ctx->mMessageMutex);
+        ctx->mErrors.push_back(message);
+        log::error("validation: " + message);
+    } else if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+        log::warn("validation: " + message);
+    }
+    return VK_FALSE;
+}
+
+Context::Context(const ContextOptions& options) {
+    try {
+        mInstance = createInstance(options.validation);
+        if (options.validation) {
+            VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+            info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                   VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+            info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+            info.pfnUserCallback = &Context::onMessage;
+            info.pUserData = this;
+            auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+                vkGetInstanceProcAddr(mInstance, "vkCreateDebugUtilsMessengerEXT"));
+            if (!create) {
+                throw Error("VK_EXT_debug_utils is not available");
+            }
+            BL_VK_CHECK(create(mInstance, &info, nullptr, &mMessenger));
+        }
+
+        const std::vector<Candidate> list = candidates(mInstance);
+        const Candidate& chosen = choose(list, options.device);
+        mPhysical = chosen.device;
+        mInfo = chosen.info;
+        mQueueFamily = chosen.queueFamily;
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(mPhysical, &props);
+        mLimits = props.limits;
+
+        // Features every mode may rely on; missing required ones make a clear error.
+        VkPhysicalDeviceVulkan13Features have13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+        VkPhysicalDeviceVulkan12Features have12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &have13};
+        VkPhysicalDeviceFeatures2 have{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &have12};
+        vkGetPhysicalDeviceFeatures2(mPhysical, &have);
+        auto require = [&](VkBool32 supported, const char* name) {
+            if (!supported) {
+                throw Error("device '" + mInfo.name + "' lacks required feature " + name);
+            }
+        };
+        require(have13.dynamicRendering, "dynamicRendering");
+        require(have13.synchronization2, "synchronization2");
+        require(have13.maintenance4, "maintenance4");
+        require(have.features.fragmentStoresAndAtomics, "fragmentStoresAndAtomics");
+
+        VkPhysicalDeviceVulkan13Features use13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+        use13.dynamicRendering = VK_TRUE;
+        use13.synchronization2 = VK_TRUE;
+        // Required by Vulkan 1.3; glslang emits LocalSizeId (which needs it) for SPIR-V 1.6.
+        use13.maintenance4 = VK_TRUE;
+        VkPhysicalDeviceVulkan12Features use12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &use13};
+        use12.bufferDeviceAddress = have12.bufferDeviceAddress;
+        use12.hostQueryReset = have12.hostQueryReset;
+        use12.scalarBlockLayout = have12.scalarBlockLayout;
+        mBufferDeviceAddress = have12.bufferDeviceAddress;
+        VkPhysicalDeviceFeatures2 use{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &use12};
+        use.features.fragmentStoresAndAtomics = VK_TRUE;
+        use.features.vertexPipelineStoresAndAtomics = have.features.vertexPipelineStoresAndAtomics;
+        use.features.shaderInt64 = have.features.shaderInt64;
+        use.features.shaderStorageImageWriteWithoutFormat = have.features.shaderStorageImageWriteWithoutFormat;
+
+        const float priority = 1.0f;
+        VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+        queueInfo.queueFamilyIndex = mQueueFamily;
+        queueInfo.queueCount = 1;
+        queueInfo.pQueuePriorities = &priority;
+        VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &use};
+        deviceInfo.queueCreateInfoCount = 1;
+        deviceInfo.pQueueCreateInfos = &queueInfo;
+        BL_VK_CHECK(vkCreateDevice(mPhysical, &deviceInfo, nullptr, &mDevice));
+        vkGetDeviceQueue(mDevice, mQueueFamily, 0, &mQueue);
+
+        VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+        poolInfo.queueFamilyIndex = mQueueFamily;
+        BL_VK_CHECK(vkCreateCommandPool(mDevice, &poolInfo, nullptr, &mCommandPool));
+    } catch (...) {
+        release();
+        throw;
+    }
+}
+
+Context::~Context() { release(); }
+
+void Context::release() {
+    if (mDevice) {
+        vkDeviceWaitIdle(mDevice);
+        if (mCommandPool) {
+            vkDestroyCommandPool(mDevice, mCommandPool, nullptr);
+            mCommandPool = VK_NULL_HANDLE;
+        }
+        vkDestroyDevice(mDevice, nullptr);
+        mDevice = VK_NULL_HANDLE;
+    }
+    if (mMessenger) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(mInstance, "vkDestroyDebugUtilsMessengerEXT"));
+        destroy(mInstance, mMessenger, nullptr);
+        mMessenger = VK_NULL_HANDLE;
+    }
+    if (mInstance) {
+        vkDestroyInstance(mInstance, nullptr);
+        mInstance = VK_NULL_HANDLE;
+    }
+}
+
+void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = mCommandPool;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    BL_VK_CHECK(vkAllocateCommandBuffers(mDevice, &alloc, &cmd));
+    struct FreeOnExit {
+        VkDevice d;
+        VkCommandPool p;
+        VkCommandBuffer c;
+        ~FreeOnExit() { vkFreeCommandBuffers(d, p, 1, &c); }
+    } freeOnExit{mDevice, mCommandPool, cmd};
+
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    BL_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    record(cmd);
+    BL_VK_CHECK(vkEndCommandBuffer(cmd));
+
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence rawFence = VK_NULL_HANDLE;
+    BL_VK_CHECK(vkCreateFence(mDevice, &fenceInfo, nullptr, &rawFence));
+    Fence fence(mDevice, rawFence);
+    VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    cmdInfo.commandBuffer = cmd;
+    VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    submit.commandBufferInfoCount = 1;
+    submit.pCommandBufferInfos = &cmdInfo;
+    BL_VK_CHECK(vkQueueSubmit2(mQueue, 1, &submit, fence.get()));
+    BL_VK_CHECK(vkWaitForFences(mDevice, 1, &rawFence, VK_TRUE, kFenceTimeoutNs));
+}
+
+std::uint32_t Context::memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
+                                  VkMemoryPropertyFlags preferred) const {
+    VkPhysicalDeviceMemoryProperties mem;
+    vkGetPhysicalDeviceMemoryProperties(mPhysical, &mem);
+    for (VkMemoryPropertyFlags want : {required | preferred, required}) {
+        for (std::uint32_t i = 0; i < mem.memoryTypeCount; ++i) {
+            if ((typeBits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & want) == want) {
+                return i;
+            }
+        }
+    }
+    throw Error("no Vulkan memory type with the required properties");
+}
+
+std::size_t Context::validationErrorCount() const {
+    std::lock_guard lock(mMessageMutex);
+    return mErrors.size();
+}
+
+std::vector<std::string> Context::validationErrors() const {
+    std::lock_guard lock(mMessageMutex);
+    return mErrors;
+}
+
+} // namespace bl::vk

@@ -1,0 +1,87 @@
+// The headless Vulkan context: instance (+ validation messenger), the chosen physical device, a
+// logical device with one graphics+compute queue, and a command pool. No window, no surface.
+//
+// Device choice (`--device`): an index into the list of Vulkan 1.3 devices, or a case-insensitive
+// substring of the device name; by default the first discrete GPU, else integrated, else any other
+// GPU, else the CPU implementation (lavapipe).
+#pragma once
+
+#include "vk/Handle.h"
+
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace bl::vk {
+
+struct ContextOptions {
+    std::string device;      // "" = automatic
+    bool validation = false; // VK_LAYER_KHRONOS_validation + messenger; errors are counted
+};
+
+struct DeviceInfo {
+    std::uint32_t index = 0;
+    std::string name;
+    std::string type; // "discrete GPU", "CPU", …
+    std::string driverName;
+    std::string driverInfo;
+    std::string apiVersion; // "1.3.230"
+    std::string describe() const;
+};
+
+class Context {
+public:
+    explicit Context(const ContextOptions& options = {});
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    VkInstance instance() const { return mInstance; }
+    VkPhysicalDevice physicalDevice() const { return mPhysical; }
+    VkDevice device() const { return mDevice; }
+    VkQueue queue() const { return mQueue; }
+    std::uint32_t queueFamily() const { return mQueueFamily; }
+    const DeviceInfo& info() const { return mInfo; }
+    const VkPhysicalDeviceLimits& limits() const { return mLimits; }
+    bool bufferDeviceAddress() const { return mBufferDeviceAddress; }
+
+    // Records commands, submits them and waits for completion. Everything a command buffer uses
+    // must stay alive until this returns, which is the simple lifetime rule of this codebase.
+    void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+
+    // A memory type with all of `required` (and `preferred` if possible) among `typeBits`.
+    std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
+                             VkMemoryPropertyFlags preferred = 0) const;
+
+    // Validation messages of severity error since creation (always 0 without validation).
+    std::size_t validationErrorCount() const;
+    std::vector<std::string> validationErrors() const;
+
+    // All Vulkan 1.3 devices, for `--device` help and listing.
+    static std::vector<DeviceInfo> listDevices();
+
+private:
+    void release(); // destroys what exists, in reverse order of creation
+
+    static VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                     VkDebugUtilsMessageTypeFlagsEXT types,
+                                                     const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                     void* self);
+
+    VkInstance mInstance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT mMessenger = VK_NULL_HANDLE;
+    VkPhysicalDevice mPhysical = VK_NULL_HANDLE;
+    VkDevice mDevice = VK_NULL_HANDLE;
+    VkQueue mQueue = VK_NULL_HANDLE;
+    std::uint32_t mQueueFamily = 0;
+    VkCommandPool mCommandPool = VK_NULL_HANDLE;
+    DeviceInfo mInfo;
+    VkPhysicalDeviceLimits mLimits{};
+    bool mBufferDeviceAddress = false;
+
+    mutable std::mutex mMessageMutex;
+    std::vector<std::string> mErrors;
+};
+
+} // namespace bl::vk

@@ -1,0 +1,79 @@
+#include "vk/Descriptors.h"
+
+#include "vk/Check.h"
+
+namespace bl::vk {
+
+DescriptorSetLayout makeDescriptorSetLayout(VkDevice device, std::initializer_list<Binding> bindings) {
+    std::vector<VkDescriptorSetLayoutBinding> list;
+    for (const Binding& b : bindings) {
+        list.push_back({b.binding, b.type, b.count, b.stages, nullptr});
+    }
+    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    info.bindingCount = static_cast<std::uint32_t>(list.size());
+    info.pBindings = list.data();
+    VkDescriptorSetLayout raw = VK_NULL_HANDLE;
+    BL_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, &raw));
+    return DescriptorSetLayout(device, raw);
+}
+
+DescriptorPool::DescriptorPool(VkDevice device, std::uint32_t maxSets, std::uint32_t perType) {
+    VkDescriptorPoolSize sizes[] = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, perType},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, perType},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, perType},
+        {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, perType},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, perType},
+    };
+    VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    info.maxSets = maxSets;
+    info.poolSizeCount = static_cast<std::uint32_t>(std::size(sizes));
+    info.pPoolSizes = sizes;
+    VkDescriptorPool raw = VK_NULL_HANDLE;
+    BL_VK_CHECK(vkCreateDescriptorPool(device, &info, nullptr, &raw));
+    mPool = DescriptorPoolHandle(device, raw);
+}
+
+VkDescriptorSet DescriptorPool::allocate(VkDescriptorSetLayout layout) {
+    VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    info.descriptorPool = mPool.get();
+    info.descriptorSetCount = 1;
+    info.pSetLayouts = &layout;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    BL_VK_CHECK(vkAllocateDescriptorSets(mPool.device(), &info, &set));
+    return set;
+}
+
+DescriptorWriter& DescriptorWriter::buffer(std::uint32_t binding, VkDescriptorType type, VkBuffer buffer,
+                                           VkDeviceSize offset, VkDeviceSize range) {
+    mBuffers.push_back({buffer, offset, range});
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstBinding = binding;
+    w.descriptorCount = 1;
+    w.descriptorType = type;
+    w.pBufferInfo = &mBuffers.back();
+    mWrites.push_back(w);
+    return *this;
+}
+
+DescriptorWriter& DescriptorWriter::image(std::uint32_t binding, VkDescriptorType type, VkImageView view,
+                                          VkImageLayout layout, VkSampler sampler, std::uint32_t arrayElement) {
+    mImages.push_back({sampler, view, layout});
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstBinding = binding;
+    w.dstArrayElement = arrayElement;
+    w.descriptorCount = 1;
+    w.descriptorType = type;
+    w.pImageInfo = &mImages.back();
+    mWrites.push_back(w);
+    return *this;
+}
+
+void DescriptorWriter::update(VkDevice device, VkDescriptorSet set) {
+    for (VkWriteDescriptorSet& w : mWrites) {
+        w.dstSet = set;
+    }
+    vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(mWrites.size()), mWrites.data(), 0, nullptr);
+}
+
+} // namespace bl::vk

@@ -1,0 +1,47 @@
+// Descriptor set layouts, a pool that owns its sets, and a writer that batches updates.
+#pragma once
+
+#include "vk/Handle.h"
+
+#include <deque>
+#include <initializer_list>
+#include <vector>
+
+namespace bl::vk {
+
+struct Binding {
+    std::uint32_t binding;
+    VkDescriptorType type;
+    VkShaderStageFlags stages;
+    std::uint32_t count = 1;
+};
+
+DescriptorSetLayout makeDescriptorSetLayout(VkDevice device, std::initializer_list<Binding> bindings);
+
+class DescriptorPool {
+public:
+    DescriptorPool() = default;
+    // Room for `maxSets` sets with up to `perType` descriptors of each common type.
+    DescriptorPool(VkDevice device, std::uint32_t maxSets, std::uint32_t perType);
+    VkDescriptorSet allocate(VkDescriptorSetLayout layout);
+
+private:
+    DescriptorPoolHandle mPool;
+};
+
+class DescriptorWriter {
+public:
+    DescriptorWriter& buffer(std::uint32_t binding, VkDescriptorType type, VkBuffer buffer,
+                             VkDeviceSize offset = 0, VkDeviceSize range = VK_WHOLE_SIZE);
+    DescriptorWriter& image(std::uint32_t binding, VkDescriptorType type, VkImageView view,
+                            VkImageLayout layout, VkSampler sampler = VK_NULL_HANDLE,
+                            std::uint32_t arrayElement = 0);
+    void update(VkDevice device, VkDescriptorSet set);
+
+private:
+    std::deque<VkDescriptorBufferInfo> mBuffers; // deque: stable addresses for the writes
+    std::deque<VkDescriptorImageInfo> mImages;
+    std::vector<VkWriteDescriptorSet> mWrites;
+};
+
+} // namespace bl::vk

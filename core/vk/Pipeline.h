@@ -1,0 +1,39 @@
+// Shader modules and pipelines. Graphics pipelines use dynamic rendering (core in Vulkan 1.3), so
+// there are no render pass or framebuffer objects; viewport and scissor are dynamic state.
+#pragma once
+
+#include "vk/Handle.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace bl::vk {
+
+ShaderModule makeShaderModule(VkDevice device, std::span<const std::uint32_t> spirv);
+
+PipelineLayout makePipelineLayout(VkDevice device, std::span<const VkDescriptorSetLayout> sets,
+                                  std::uint32_t pushConstantBytes, VkShaderStageFlags pushStages);
+
+struct GraphicsPipelineDesc {
+    std::span<const std::uint32_t> vertexShader;
+    std::span<const std::uint32_t> fragmentShader;
+    std::vector<VkVertexInputBindingDescription> vertexBindings;
+    std::vector<VkVertexInputAttributeDescription> vertexAttributes;
+    std::vector<VkFormat> colorFormats;
+    VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+    VkCompareOp depthCompare = VK_COMPARE_OP_GREATER; // reversed depth: larger is nearer
+    bool depthWrite = true;
+    VkCullModeFlags cullMode = VK_CULL_MODE_NONE; // surfaces are two-sided
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+};
+
+Pipeline makeGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc);
+Pipeline makeComputePipeline(VkDevice device, std::span<const std::uint32_t> spirv, VkPipelineLayout layout);
+
+// Workgroups needed to cover `items` with groups of `groupSize`.
+inline std::uint32_t groupCount(std::uint32_t items, std::uint32_t groupSize) {
+    return (items + groupSize - 1) / groupSize;
+}
+
+} // namespace bl::vk

@@ -1,0 +1,62 @@
+// The interface every rendering strategy implements (ARCHITECTURE.md). A mode turns (Scene,
+// settings, budget) into images and per-pass timings. One unit of work (iterate) is what a user
+// would stop between: one spp, one frame, one bundle direction. Drivers (the CLI, the experiment
+// runner) call setScene once, iterate until a budget or checkpoint, and resolve when they need
+// the current estimate.
+#pragma once
+
+#include "base/PassTime.h"
+#include "config/Settings.h"
+#include "image/Image.h"
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace bl {
+
+struct Scene;
+namespace vk {
+class Context;
+}
+
+struct IterationInfo {
+    std::uint32_t index = 0; // 0, 1, 2, … since setScene
+    std::uint64_t seed = 0;  // run seed; randomness derives from (seed, pixel, index, dimension)
+    double time = 0.0;       // scene time in seconds, for animated scenes
+};
+
+// Named images of one resolve: "" is the radiance estimate, others are AOVs.
+struct ImageSet {
+    std::vector<std::pair<std::string, Image>> layers;
+    std::uint64_t nonFiniteSamples = 0; // samples discarded as NaN/Inf (never averaged in)
+    std::uint32_t iterations = 0;
+
+    const Image& radiance() const { return layers.at(0).second; }
+};
+
+// One pass of a mode's plan and why it runs or is skipped for this scene.
+struct PlannedPass {
+    std::string name;
+    bool runs = true;
+    std::string reason;
+};
+
+class Mode {
+public:
+    virtual ~Mode() = default;
+    virtual std::string_view name() const = 0;
+    // Uploads the scene and builds pipelines. `gpu` is null for CPU modes. The scene must outlive
+    // the mode.
+    virtual void setScene(const Scene& scene, vk::Context* gpu) = 0;
+    virtual void iterate(const IterationInfo& info) = 0;
+    virtual ImageSet resolve() = 0;
+    virtual const Settings& settings() const = 0;
+    virtual PassTimes timings() const = 0;
+    // The passes this mode runs for the scene given to setScene (or would, before it).
+    virtual std::vector<PlannedPass> plan(const Scene& scene) const = 0;
+};
+
+} // namespace bl

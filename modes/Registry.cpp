@@ -1,0 +1,37 @@
+#include "modes/Registry.h"
+
+#include "base/Error.h"
+#include "modes/raster/RasterMode.h"
+
+namespace bl {
+
+namespace {
+const ModeEntry kModes[] = {
+    {"raster", "rasterized direct light from point/spot lights (cube shadow maps), emitters, environment",
+     true, &RasterMode::parameters, &RasterMode::create},
+};
+} // namespace
+
+std::span<const ModeEntry> modeRegistry() { return kModes; }
+
+const ModeEntry& findMode(std::string_view name) {
+    std::string known;
+    for (const ModeEntry& e : kModes) {
+        if (e.name == name) {
+            return e;
+        }
+        known += (known.empty() ? "" : ", ") + std::string(e.name);
+    }
+    throw Error("unknown mode '" + std::string(name) + "' (available: " + known + ")");
+}
+
+std::unique_ptr<Mode> createMode(std::string_view name, const std::vector<std::string>& assignments) {
+    const ModeEntry& entry = findMode(name);
+    Settings settings(entry.parameters());
+    for (const std::string& a : assignments) {
+        settings.assign(a);
+    }
+    return entry.create(settings);
+}
+
+} // namespace bl

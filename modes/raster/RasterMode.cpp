@@ -1,0 +1,220 @@
+#include "modes/raster/RasterMode.h"
+
+#include "base/Error.h"
+#include "sampling/Halton.h"
+#include "scene/Scene.h"
+#include "vk/Commands.h"
+#include "vk/Descriptors.h"
+
+#include <cmath>
+#include <modes/raster/RasterShared.h>
+#include <modes/raster/shade.comp.spv.h>
+#include <shared/Bindings.h>
+
+namespace bl {
+
+std::vector<ParamSpec> RasterMode::parameters() {
+    return {
+        {kShadowResolution, std::int64_t{1024}, "texels",
+         "side of each shadow cube face ([TO12] used 1024^2 per face for direct light)", 16, 8192, {}},
+        {kJitter, true, "", "move the sample inside the pixel from iteration 1 on (box filter)", 0, 1, {}},
+    };
+}
+
+std::unique_ptr<Mode> RasterMode::create(const Settings& settings) {
+    return std::make_unique<RasterMode>(settings);
+}
+
+RasterMode::RasterMode(const Settings& settings) : mSettings(settings) {}
+
+struct RasterMode::Gpu {
+    std::unique_ptr<gpu::GpuScene> scene;
+    std::unique_ptr<gpu::GBufferPass> gbuffer;
+    std::unique_ptr<gpu::ShadowCubePass> shadows;
+    vk::Buffer accum;    // vec4 per pixel: running radiance sum, sample count
+    vk::Buffer counters; // [0] non-finite samples
+    vk::DescriptorSetLayout setLayout;
+    vk::DescriptorPool pool;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    vk::PipelineLayout pipelineLayout;
+    vk::Pipeline pipeline;
+    vk::GpuTimer timer;
+};
+
+RasterMode::~RasterMode() = default;
+
+glm::vec2 RasterMode::samplePosition(std::uint32_t k, bool jitter) {
+    if (!jitter || k == 0) {
+        return glm::vec2(0.5f);
+    }
+    // Halton (2,3) shifted by 1/2 (a Cranley-Patterson rotation) so that k = 0 is the centre.
+    glm::vec2 p(static_cast<float>(radicalInverse(2, k)) + 0.5f, static_cast<float>(radicalInverse(3, k)) + 0.5f);
+    return p - glm::floor(p);
+}
+
+std::vector<PlannedPass> RasterMode::plan(const Scene& scene) const {
+    SceneFeatures f = scene.features();
+    std::vector<PlannedPass> passes;
+    if (f.shadowCastingLights() == 0) {
+        passes.push_back({"shadow maps", false, "no point or spot lights"});
+    } else {
+        passes.push_back({"shadow maps", true,
+                          std::to_string(f.shadowCastingLights()) + " light(s) x 6 faces; " +
+                              (f.animated ? "every iteration (animated scene)" : "once (static scene)")});
+    }
+    passes.push_back({"gbuffer", true, std::to_string(f.triangles) + " triangles"});
+    std::string shading = f.shadowCastingLights() ? "direct light" : "";
+    auto add = [&shading](const std::string& s) { shading += (shading.empty() ? "" : ", ") + s; };
+    if (f.emissiveMeshes) add("visible emitters");
+    if (f.environment) add("environment behind geometry");
+    passes.push_back({"shade", true, shading.empty() ? "nothing lights the scene: black" : shading});
+    return passes;
+}
+
+void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
+    if (!ctx) {
+        throw Error("mode raster needs a Vulkan device");
+    }
+    mScene = &scene;
+    mContext = ctx;
+    mIterations = 0;
+    mShadowTime.reset();
+    VkDevice device = ctx->device();
+    const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
+    const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
+
+    auto g = std::make_unique<Gpu>();
+    g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
+    g->gbuffer = std::make_unique<gpu::GBufferPass>(*ctx, *g->scene, width, height);
+    g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene,
+                                                       static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution)));
+    g->accum = vk::Buffer(*ctx, VkDeviceSize(width) * height * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                          vk::MemoryUse::Device);
+    g->counters = vk::Buffer(*ctx, sizeof(std::uint32_t) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Device);
+    g->timer = vk::GpuTimer(*ctx);
+
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    g->setLayout = vk::makeDescriptorSetLayout(
+        device, {{shader::kRasterBindingGBuffer, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs, shader::kGBufferAttachmentCount},
+                 {shader::kRasterBindingCamera, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
+                 {shader::kRasterBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kRasterBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kRasterBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
+                 {shader::kRasterBindingEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs},
+                 {shader::kRasterBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kRasterBindingCounters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
+    g->pool = vk::DescriptorPool(device, 1, 8);
+    g->set = g->pool.allocate(g->setLayout.get());
+    vk::DescriptorWriter writer;
+    for (std::uint32_t i = 0; i < shader::kGBufferAttachmentCount; ++i) {
+        writer.image(shader::kRasterBindingGBuffer, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->gbuffer->attachment(i).view(),
+                     VK_IMAGE_LAYOUT_GENERAL, VK_NULL_HANDLE, i);
+    }
+    writer.buffer(shader::kRasterBindingCamera, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, g->gbuffer->cameraBuffer())
+        .buffer(shader::kRasterBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->materialBuffer())
+        .buffer(shader::kRasterBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
+        .image(shader::kRasterBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->shadows->maps().view(),
+               VK_IMAGE_LAYOUT_GENERAL)
+        .image(shader::kRasterBindingEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+               g->scene->environmentView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, g->scene->environmentSampler())
+        .buffer(shader::kRasterBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->accum.get())
+        .buffer(shader::kRasterBindingCounters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->counters.get())
+        .update(device, g->set);
+    VkDescriptorSetLayout layouts[] = {g->setLayout.get()};
+    g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::RasterPush), cs);
+    g->pipeline = vk::makeComputePipeline(device, kSpv_modes_raster_shade_comp, g->pipelineLayout.get());
+
+    ctx->submitAndWait([&](VkCommandBuffer cmd) {
+        vkCmdFillBuffer(cmd, g->accum.get(), 0, VK_WHOLE_SIZE, 0);
+        vkCmdFillBuffer(cmd, g->counters.get(), 0, VK_WHOLE_SIZE, 0);
+    });
+    mGpu = std::move(g);
+}
+
+void RasterMode::iterate(const IterationInfo& info) {
+    if (!mGpu) {
+        throw Error("raster: iterate() before setScene()");
+    }
+    Gpu& g = *mGpu;
+    const Scene& scene = *mScene;
+    const std::uint32_t width = g.gbuffer->width();
+    const std::uint32_t height = g.gbuffer->height();
+    const glm::vec2 sample = samplePosition(mIterations, mSettings.getBool(kJitter));
+    const glm::vec2 jitterNdc = (sample - 0.5f) * glm::vec2(2.0f / width, 2.0f / height);
+    const shader::GpuCamera camera = makeGpuCamera(scene.camera, info.time, g.scene->cameraNear());
+    // Static scenes need their shadow maps once; animated ones whenever the time changes.
+    const bool renderShadows = !mShadowTime || (g.scene->features().animated && *mShadowTime != info.time);
+
+    mContext->submitAndWait([&](VkCommandBuffer cmd) {
+        g.timer.begin(cmd);
+        if (renderShadows) {
+            g.shadows->record(cmd, info.time, &g.timer);
+        }
+        g.gbuffer->record(cmd, camera, jitterNdc, info.time, &g.timer);
+
+        std::uint32_t scope = g.timer.start(cmd, "shade");
+        shader::RasterPush push{};
+        push.lightCount = g.shadows->lightCount();
+        push.shadowResolution = g.shadows->resolution();
+        push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
+        push.environmentRotation = g.scene->environmentRotation();
+        push.samplePosition = sample;
+        push.width = width;
+        push.height = height;
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 1, &g.set, 0, nullptr);
+        vkCmdPushConstants(cmd, g.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdDispatch(cmd, vk::groupCount(width, shader::kRasterGroupSize),
+                      vk::groupCount(height, shader::kRasterGroupSize), 1);
+        g.timer.stop(cmd, scope);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    });
+    g.timer.collect();
+    if (renderShadows) {
+        mShadowTime = info.time;
+    }
+    ++mIterations;
+}
+
+ImageSet RasterMode::resolve() {
+    if (!mGpu) {
+        throw Error("raster: resolve() before setScene()");
+    }
+    Gpu& g = *mGpu;
+    const int width = static_cast<int>(g.gbuffer->width());
+    const int height = static_cast<int>(g.gbuffer->height());
+    std::vector<glm::vec4> sums(static_cast<std::size_t>(width) * height);
+    g.accum.download(*mContext, sums.data(), sums.size() * sizeof(glm::vec4));
+    std::uint32_t counters[4] = {};
+    g.counters.download(*mContext, counters, sizeof(counters));
+
+    ImageSet out;
+    out.iterations = mIterations;
+    out.nonFiniteSamples = counters[0];
+    Image radiance(width, height);
+    for (std::size_t i = 0; i < sums.size(); ++i) {
+        radiance.pixels()[i] = sums[i].w > 0.0f ? glm::vec3(sums[i]) / sums[i].w : glm::vec3(0.0f);
+    }
+    out.layers.emplace_back("", std::move(radiance));
+
+    // AOVs of the last iteration's G-buffer, for inspection and later denoisers.
+    auto aov = [&](std::uint32_t attachment, const char* name) {
+        std::vector<std::byte> bytes = g.gbuffer->attachment(attachment).download(*mContext, VK_IMAGE_LAYOUT_GENERAL);
+        const auto* texels = reinterpret_cast<const glm::vec4*>(bytes.data());
+        Image image(width, height);
+        for (std::size_t i = 0; i < image.pixelCount(); ++i) {
+            image.pixels()[i] = glm::vec3(texels[i]);
+        }
+        out.layers.emplace_back(name, std::move(image));
+    };
+    if (mIterations > 0) {
+        aov(shader::kGBufferAlbedo, "albedo");
+        aov(shader::kGBufferNormal, "normal");
+    }
+    return out;
+}
+
+PassTimes RasterMode::timings() const { return mGpu ? mGpu->timer.totals() : PassTimes{}; }
+
+} // namespace bl

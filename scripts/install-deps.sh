@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages bundlelab needs, and only those that are missing, so that a second
+# run costs a dpkg query and nothing else. Run as root (or with sudo available).
+set -euo pipefail
+
+packages=(
+    cmake ninja-build g++ pkg-config git
+    # Vulkan: loader, headers, lavapipe (the default device), validation layers, shader compiler
+    libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-tools spirv-tools
+    # Maths, geometry, images, configuration, command line
+    libglm-dev libeigen3-dev libopenmesh-dev libopenexr-dev libstb-dev libtomlplusplus-dev
+    libcli11-dev libtinyobjloader-dev
+    # CPU reference path tracer
+    libembree-dev libtbb-dev
+    # Tests, benchmarks, plots
+    libgtest-dev libgmock-dev libbenchmark-dev python3-matplotlib
+)
+
+missing=()
+for p in "${packages[@]}"; do
+    status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
+    [[ "$status" == "installed" ]] || missing+=("$p")
+done
+
+if ((${#missing[@]} == 0)); then
+    echo "install-deps: all ${#packages[@]} packages present"
+    exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo_cmd=()
+if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

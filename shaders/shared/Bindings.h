@@ -1,0 +1,32 @@
+// Descriptor set and binding numbers, defined once for the host and the shaders.
+#ifndef BL_SHARED_BINDINGS_H
+#define BL_SHARED_BINDINGS_H
+#include "Prelude.h"
+
+BL_NAMESPACE_BEGIN
+
+// G-buffer pass, set 0 (per frame).
+BL_CONST uint kGBufferBindingCamera = 0u;    // uniform GpuCamera
+BL_CONST uint kGBufferBindingMaterials = 1u; // storage GpuMaterial[]
+// G-buffer pass, set 1 (per material): its albedo texture (a white texel when untextured).
+BL_CONST uint kGBufferBindingAlbedoTexture = 0u;
+
+// G-buffer colour attachments.
+BL_CONST uint kGBufferPosition = 0u; // xyz world position, w = 1 where a surface was hit
+BL_CONST uint kGBufferNormal = 1u;   // xyz shading normal facing the camera, w = material index
+BL_CONST uint kGBufferAlbedo = 2u;   // rgb albedo (texture applied)
+BL_CONST uint kGBufferEmission = 3u; // rgb emitted radiance toward the camera (front faces only)
+BL_CONST uint kGBufferAttachmentCount = 4u;
+
+// Raster shading pass, set 0.
+BL_CONST uint kRasterBindingGBuffer = 0u;    // storage image[4] (rgba32f), the G-buffer
+BL_CONST uint kRasterBindingCamera = 1u;     // uniform GpuCamera
+BL_CONST uint kRasterBindingMaterials = 2u;  // storage GpuMaterial[]
+BL_CONST uint kRasterBindingLights = 3u;     // storage GpuLight[]
+BL_CONST uint kRasterBindingShadowMaps = 4u; // sampled 2D array (r32f), layers 6 l .. 6 l + 5 = light l
+BL_CONST uint kRasterBindingEnvironment = 5u; // combined sampler, lat-long rgba32f
+BL_CONST uint kRasterBindingAccum = 6u;      // storage vec4[] running sum of radiance
+BL_CONST uint kRasterBindingCounters = 7u;   // storage uint[]: [0] non-finite samples
+
+BL_NAMESPACE_END
+#endif

@@ -1,0 +1,85 @@
+// Structs shared by the host and the shaders (std430 storage buffers and push constants).
+// Sizes and offsets are pinned by static_asserts here and by tests/shaders/StructLayoutTest.cpp.
+#ifndef BL_SHARED_GPU_TYPES_H
+#define BL_SHARED_GPU_TYPES_H
+#include "Prelude.h"
+
+BL_NAMESPACE_BEGIN
+
+// One vertex as the raster passes read it: position + u, normal + v.
+struct GpuVertex {
+    vec4 positionU;
+    vec4 normalV;
+};
+BL_STATIC_ASSERT(sizeof(GpuVertex) == 32, "GpuVertex layout");
+
+BL_CONST uint kNoTexture = 0xffffffffu;
+
+// BRDF parameters; the BRDF itself is in Brdf.h. exponentU == exponentV means the isotropic
+// normalized Phong lobe, otherwise the Ashikhmin-Shirley lobe.
+struct GpuMaterial {
+    vec3 albedo;        // Lambertian reflectance: f = albedo / pi
+    uint albedoTexture; // index into the texture table, kNoTexture if none
+    vec3 specular;      // reflectance of the glossy lobe
+    float exponentU;    // Phong exponent (or Ashikhmin-Shirley n_u)
+    float exponentV;    // Ashikhmin-Shirley n_v
+    uint flags;         // reserved
+    uint pad0;
+    uint pad1;
+};
+BL_STATIC_ASSERT(sizeof(GpuMaterial) == 48, "GpuMaterial layout");
+
+BL_CONST uint kLightPoint = 0u;
+BL_CONST uint kLightSpot = 1u;
+
+// Point and spot lights (radiant intensity in W/sr). Spot: full intensity inside cosInner,
+// smoothstep down to zero at cosOuter (see Lights.h).
+struct GpuLight {
+    vec3 position;
+    uint type;
+    vec3 intensity;
+    float cosOuter;
+    vec3 direction; // spot axis, unit length
+    float cosInner;
+};
+BL_STATIC_ASSERT(sizeof(GpuLight) == 48, "GpuLight layout");
+
+// Pinhole camera as both the rasterizer and ray generation use it (Camera.h).
+struct GpuCamera {
+    mat4 viewProj;
+    vec3 position;
+    float tanHalfX; // tan(horizontal fov / 2)
+    vec3 forward;
+    float tanHalfY; // tan(vertical fov / 2)
+    vec3 right;
+    float width;
+    vec3 up; // true up = cross(right, forward)
+    float height;
+};
+BL_STATIC_ASSERT(sizeof(GpuCamera) == 128, "GpuCamera layout");
+
+// Per-draw push constants of the G-buffer pass.
+struct GBufferPush {
+    mat4 model;      // rigid transform at the frame's time
+    vec3 emission;   // emitted radiance of the mesh's front face
+    uint material;   // index into the material buffer
+    vec2 jitter;     // sub-pixel offset in NDC units
+    uint pad0;
+    uint pad1;
+};
+BL_STATIC_ASSERT(sizeof(GBufferPush) == 96, "GBufferPush layout");
+
+// Per-draw push constants of the shadow cube pass.
+struct ShadowPush {
+    mat4 model;
+    vec3 lightPosition;
+    float nearPlane; // world units; geometry closer than this to the light is clipped
+    uint face;       // cube face 0..5, see CubeFaces.h
+    uint pad0;
+    uint pad1;
+    uint pad2;
+};
+BL_STATIC_ASSERT(sizeof(ShadowPush) == 96, "ShadowPush layout");
+
+BL_NAMESPACE_END
+#endif
