@@ -51,9 +51,10 @@ Pipeline makeGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& d) {
     VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
     raster.polygonMode = VK_POLYGON_MODE_FILL;
     raster.cullMode = d.cullMode;
-    // World-space counter-clockwise is the front face (CONVENTIONS.md). Our projections flip y
-    // (Vulkan's framebuffer y points down), which turns CCW into CW on screen.
-    raster.frontFace = VK_FRONT_FACE_CLOCKWISE;
+    // World-space counter-clockwise is the front face (CONVENTIONS.md). Our projections put +up
+    // at framebuffer row 0, so the image is upright and a triangle seen from its front keeps its
+    // counter-clockwise order there (positive area in Vulkan's y-down formula).
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     raster.lineWidth = 1.0f;
     VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
