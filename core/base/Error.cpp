@@ -19,4 +19,10 @@ std::string formatNumber(double value) {
     return std::string(buffer, result.ptr);
 }
 
+std::string formatNumber(float value) {
+    char buffer[64];
+    auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+    return std::string(buffer, result.ptr);
+}
+
 } // namespace bl

@@ -17,5 +17,7 @@ public:
 
 // Formats a float the way a user typed it (shortest round-trip form).
 std::string formatNumber(double value);
+// A float in its own shortest form (1.2f prints as 1.2, not 1.2000000476837158).
+std::string formatNumber(float value);
 
 } // namespace bl

@@ -51,7 +51,7 @@ void Settings::set(const std::string& key, const ParamValue& value) {
         v = static_cast<double>(std::get<std::int64_t>(v));
     }
     if (v.index() != spec.defaultValue.index()) {
-        throw Error("parameter '" + key + "' expects a " + typeName(spec.defaultValue) + ", got " +
+        throw Error("parameter '" + key + "' expects a value of type " + typeName(spec.defaultValue) + ", got " +
                     typeName(v) + " '" + formatValue(v) + "'");
     }
     if (v.index() == 1 || v.index() == 2) {
@@ -78,7 +78,7 @@ void Settings::set(const std::string& key, const ParamValue& value) {
 void Settings::set(const std::string& key, const std::string& text) {
     const ParamValue& def = mSpecs[indexOf(key)].defaultValue;
     auto bad = [&]() -> Error {
-        return Error("parameter '" + key + "' expects a " + typeName(def) + ", got '" + text + "'");
+        return Error("parameter '" + key + "' expects a value of type " + typeName(def) + ", got '" + text + "'");
     };
     switch (def.index()) {
     case 0:

@@ -42,7 +42,11 @@ void requireRange(StrictTable& t, const std::string& key, glm::vec3 v, float lo,
 }
 
 void requireNonNegative(StrictTable& t, const std::string& key, glm::vec3 v) {
-    requireRange(t, key, v, 0.0f, std::numeric_limits<float>::max());
+    for (int i = 0; i < 3; ++i) {
+        if (v[i] < 0.0f) {
+            t.fail(key, "value " + formatNumber(v[i]) + " is negative");
+        }
+    }
 }
 
 glm::vec3 unitDirection(StrictTable& t, const std::string& key, glm::vec3 v) {
@@ -154,7 +158,11 @@ glm::mat4 readStaticTransform(StrictTable& t) {
     glm::vec3 scale(1.0f);
     if (t.has("scale")) {
         scale = t.isArray("scale") ? t.vec3("scale") : glm::vec3(static_cast<float>(t.number("scale")));
-        requireRange(t, "scale", scale, 1e-30f, std::numeric_limits<float>::max());
+        for (int i = 0; i < 3; ++i) {
+            if (!(scale[i] > 0.0f)) {
+                t.fail("scale", "value " + formatNumber(scale[i]) + " must be positive");
+            }
+        }
     }
     glm::mat4 m = glm::translate(glm::mat4(1.0f), translate) * glm::mat4_cast(rotationFromEulerDegrees(rotate)) *
                   glm::scale(glm::mat4(1.0f), scale);
@@ -196,7 +204,7 @@ void addMeshFile(Scene& scene, MeshFile file, const std::string& context,
         scene.loadStats.repairedNormals += stats.repairedNormals;
         scene.loadStats.meshesWithGeneratedNormals += stats.generatedNormals;
         if (stats.degenerateTriangles || stats.duplicateTriangles) {
-            log::info(context + ": " + mesh.name + ": dropped " + std::to_string(stats.degenerateTriangles) +
+            log::debug(context + ": " + mesh.name + ": dropped " + std::to_string(stats.degenerateTriangles) +
                       " degenerate and " + std::to_string(stats.duplicateTriangles) + " duplicate triangles");
         }
         if (mesh.triangles.empty()) {

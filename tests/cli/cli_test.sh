@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# cli_test.sh CASE BUNDLELAB OUTDIR: one end-to-end case of the CLI. Exits non-zero on failure.
+set -uo pipefail
+case_name=$1
+bl=$2
+out=$3/$case_name
+rm -rf "$out" && mkdir -p "$out"
+
+fail() { echo "FAIL: $*"; exit 1; }
+# expect_error CMD...: the command must exit non-zero, print "bundlelab: error:" and $expected.
+expect_error() {
+    local log="$out/stderr.txt"
+    "$@" >"$out/stdout.txt" 2>"$log"
+    local rc=$?
+    cat "$log"
+    [[ $rc -ne 0 ]] || fail "exit code 0 for: $*"
+    grep -qF -- "$expected" "$log" || fail "message lacks '$expected'"
+}
+
+case "$case_name" in
+render_writes_outputs)
+    "$bl" render data/cornell-box/cornell-point.toml --mode raster --width 64 --height 48 --spp 2 \
+        --set shadow_resolution=128 --out "$out/img.exr" | tee "$out/log.txt" || fail "render failed"
+    for f in img.exr img.png img.json; do [[ -s "$out/$f" ]] || fail "missing $f"; done
+    grep -q '"iterations": 2' "$out/img.json" || fail "json lacks iterations"
+    grep -q '"shadow_resolution": "128"' "$out/img.json" || fail "json lacks resolved settings"
+    grep -q '"device": "llvmpipe\|"device": "' "$out/img.json" || fail "json lacks device"
+    grep -q "shade" "$out/log.txt" || fail "no per-pass timings printed"
+    ;;
+render_partial_budget)
+    "$bl" render data/cornell-box/cornell.toml --mode raster --width 32 --height 32 --time 0.2 \
+        --out "$out/t.exr" || fail "time budget render failed"
+    [[ -s "$out/t.exr" ]] || fail "missing output"
+    ;;
+info)
+    "$bl" info data/cornell-box/cornell.toml | tee "$out/info.txt" || fail "info failed"
+    grep -q "triangles        32" "$out/info.txt" || fail "triangle count"
+    grep -q "emissive meshes  1" "$out/info.txt" || fail "emissive count"
+    ;;
+modes)
+    "$bl" modes | tee "$out/modes.txt" || fail "modes failed"
+    grep -q "shadow_resolution = 1024 texels" "$out/modes.txt" || fail "parameter listing"
+    ;;
+plan)
+    "$bl" plan data/cornell-box/cornell.toml --mode raster | tee "$out/plan.txt" || fail "plan failed"
+    grep -q "skip  shadow maps: no point or spot lights" "$out/plan.txt" || fail "plan reason"
+    ;;
+bad_scene)
+    printf '[camera]\nresolution = [512, 0]\n' >"$out/bad.toml"
+    expected="bad.toml:2: camera.resolution: value 0 outside [1, 16384]"
+    expect_error "$bl" render "$out/bad.toml" --mode raster --out "$out/x.exr"
+    ;;
+missing_file)
+    expected="nothere.toml: file not found"
+    expect_error "$bl" render nothere.toml --mode raster --out "$out/x.exr"
+    ;;
+unknown_mode)
+    expected="unknown mode 'rasterr' (available: raster"
+    expect_error "$bl" render data/cornell-box/cornell.toml --mode rasterr --out "$out/x.exr"
+    ;;
+unknown_parameter)
+    expected="unknown parameter 'shadow_res'"
+    expect_error "$bl" render data/cornell-box/cornell.toml --mode raster --set shadow_res=5 --out "$out/x.exr"
+    ;;
+bad_parameter_value)
+    expected="parameter 'shadow_resolution' = 5 outside [16, 8192]"
+    expect_error "$bl" render data/cornell-box/cornell.toml --mode raster --set shadow_resolution=5 --out "$out/x.exr"
+    ;;
+bad_output_extension)
+    expected="the output must be an .exr file"
+    expect_error "$bl" render data/cornell-box/cornell.toml --mode raster --out "$out/x.png"
+    ;;
+absurd_resolution)
+    expected="--width"
+    expect_error "$bl" render data/cornell-box/cornell.toml --mode raster --width 100000000 --out "$out/x.exr"
+    ;;
+nan_vertex)
+    printf 'v 0 0 0\nv 1 0 0\nv 0 nan 1\nf 1 2 3\n' >"$out/nan.obj"
+    expected="nan.obj:3: value 'nan' is not finite"
+    expect_error "$bl" info "$out/nan.obj"
+    ;;
+validation_clean)
+    "$bl" render data/external/sponza-point.toml --mode raster --width 96 --height 64 --validation \
+        --set shadow_resolution=128 --out "$out/s.exr" 2>"$out/stderr.txt" || { cat "$out/stderr.txt"; fail "render failed"; }
+    if grep -q "validation" "$out/stderr.txt"; then cat "$out/stderr.txt"; fail "validation messages"; fi
+    ;;
+*)
+    fail "unknown case $case_name"
+    ;;
+esac
+echo "PASS: $case_name"

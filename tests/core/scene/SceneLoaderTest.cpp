@@ -1,0 +1,181 @@
+#include "scene/SceneLoader.h"
+#include "support/TestFiles.h"
+
+#include <filesystem>
+#include <gtest/gtest.h>
+
+using namespace bl;
+using bl::test::errorOf;
+using bl::test::sharedPath;
+using bl::test::sourcePath;
+using bl::test::writeTempFile;
+
+namespace {
+
+const char* kQuadObj = "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 4 3 2\n";
+
+// A minimal valid scene whose mesh file sits beside it; `extra` is appended verbatim.
+std::string sceneWith(const std::string& extra, const std::string& name = "scene.toml") {
+    writeTempFile("quad.obj", kQuadObj);
+    return writeTempFile(name, "[[material]]\nname = \"white\"\nalbedo = [0.5, 0.5, 0.5]\n\n"
+                               "[[mesh]]\nfile = \"quad.obj\"\nmaterial = \"white\"\n" +
+                                   extra);
+}
+
+std::string loadError(const std::string& path) {
+    return errorOf([&] { loadScene(path); });
+}
+
+} // namespace
+
+TEST(SceneLoader, LoadsTheTypedCornellBox) {
+    Scene s = loadScene(sourcePath("data/cornell-box/cornell.toml"));
+    SceneFeatures f = s.features();
+    EXPECT_EQ(f.triangles, 32u);
+    EXPECT_EQ(f.materials, 4u);
+    EXPECT_EQ(f.emissiveMeshes, 1u);
+    EXPECT_EQ(f.emissiveTriangles, 2u);
+    EXPECT_FALSE(f.glossy);
+    EXPECT_FALSE(f.animated);
+    EXPECT_NEAR(f.bounds.hi.x, 556.0f, 1e-3f);
+    EXPECT_NEAR(f.bounds.hi.z, 559.2f, 1e-3f);
+    EXPECT_EQ(s.camera.resolution, glm::ivec2(512, 512));
+    EXPECT_EQ(s.camera.fovAxis, FovAxis::X);
+    const Mesh* light = nullptr;
+    for (const Mesh& m : s.meshes) {
+        if (m.emissive()) light = &m;
+    }
+    ASSERT_TRUE(light);
+    EXPECT_EQ(light->emission, glm::vec3(17.0f, 12.0f, 4.0f));
+}
+
+TEST(SceneLoader, EverySceneInDataLoads) {
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(sourcePath("data"))) {
+        if (entry.path().extension() == ".toml") {
+            SCOPED_TRACE(entry.path().string());
+            EXPECT_NO_THROW(loadScene(entry.path().string()));
+        }
+    }
+}
+
+TEST(SceneLoader, McGuireCornellDropsDuplicatesAndKeepsItsLight) {
+    Scene s = loadScene(sharedPath("data/cornell-box/mcguire/CornellBox-Original.obj"));
+    SceneFeatures f = s.features();
+    EXPECT_GT(s.loadStats.duplicateTriangles + s.loadStats.degenerateTriangles, 0u);
+    EXPECT_EQ(f.emissiveMeshes, 1u);
+    EXPECT_TRUE(s.lights.empty()); // the MTL emitter lights it: no headlight added
+    for (const Mesh& m : s.meshes) {
+        for (const glm::vec3& n : m.normals) {
+            EXPECT_NEAR(glm::length(n), 1.0f, 1e-4f);
+        }
+    }
+}
+
+TEST(SceneLoader, BareMeshGetsCameraAndLight) {
+    Scene s = loadScene(sharedPath("data/bunny/stanford/bun_zipper_res4.ply"));
+    EXPECT_EQ(s.lights.size(), 1u);
+    EXPECT_TRUE(s.environment.present);
+    EXPECT_GT(s.triangleCount(), 900u);
+    Bounds b = s.bounds();
+    // The fitted camera sees the bounding sphere: its distance exceeds the radius.
+    EXPECT_GT(glm::length(s.camera.pose.position - b.center()), b.radius());
+}
+
+TEST(SceneLoader, TransformsAndKeyframes) {
+    Scene s = loadScene(sceneWith("translate = [0, 2, 0]\nscale = 2.0\n"
+                                  "[[mesh.keyframe]]\ntime = 0.0\n"
+                                  "[[mesh.keyframe]]\ntime = 1.0\ntranslate = [4, 0, 0]\n"));
+    ASSERT_EQ(s.meshes.size(), 1u);
+    Bounds local;
+    for (const glm::vec3& p : s.meshes[0].positions) local.extend(p);
+    EXPECT_EQ(local.lo, glm::vec3(0, 2, 0)); // the unit quad, scaled by 2, raised by 2
+    EXPECT_EQ(local.hi, glm::vec3(2, 2, 2));
+    EXPECT_TRUE(s.features().animated);
+    glm::vec4 mid = s.meshes[0].animation.at(0.5) * glm::vec4(0, 0, 0, 1);
+    EXPECT_NEAR(mid.x, 2.0f, 1e-5f);
+    EXPECT_NEAR(s.bounds().hi.x, 6.0f, 1e-5f); // bounds cover every keyframe
+}
+
+TEST(SceneLoader, LightsAndEnvironment) {
+    Scene s = loadScene(sceneWith("[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\nintensity = [1, 2, 3]\n"
+                                  "direction = [0, -2, 0]\ncone_angle = 30\nfalloff = 5\n"
+                                  "[environment]\nradiance = [0.5, 0.5, 0.5]\nrotation = 90\n"));
+    ASSERT_EQ(s.lights.size(), 1u);
+    EXPECT_EQ(s.lights[0].type, Light::Type::Spot);
+    EXPECT_EQ(s.lights[0].direction, glm::vec3(0, -1, 0));
+    EXPECT_TRUE(s.environment.present);
+    EXPECT_FALSE(s.environment.hasMap());
+    EXPECT_EQ(s.features().spotLights, 1u);
+}
+
+TEST(SceneLoader, EnvironmentMapFromSharedData) {
+    std::string hdr = std::filesystem::absolute(sharedPath("data/envmap/classroom-sky.hdr")).string();
+    Scene s = loadScene(sceneWith("[environment]\nfile = \"" + hdr + "\"\nscale = 2.0\n"));
+    EXPECT_TRUE(s.environment.hasMap());
+    EXPECT_EQ(s.environment.map.width(), 512);
+}
+
+struct BadScene {
+    const char* name;
+    std::string extra;
+    int line;             // expected line in the message (0: not checked)
+    const char* expected; // substring of the message
+};
+
+class SceneLoaderErrors : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(SceneLoaderErrors, NamesFileLineAndValue) {
+    const BadScene& bad = GetParam();
+    std::string path = sceneWith(bad.extra, std::string(bad.name) + ".toml");
+    std::string e = loadError(path);
+    EXPECT_NE(e.find(bad.expected), std::string::npos) << "message: " << e;
+    EXPECT_NE(e.find(path), std::string::npos) << "message: " << e;
+    if (bad.line > 0) {
+        EXPECT_NE(e.find(path + ":" + std::to_string(bad.line) + ":"), std::string::npos) << "message: " << e;
+    }
+}
+
+// The base scene has 7 lines; `extra` starts on line 8.
+INSTANTIATE_TEST_SUITE_P(
+    Invalid, SceneLoaderErrors,
+    ::testing::Values(
+        BadScene{"unknown_key", "colour = [1, 0, 0]\n", 8, "unknown key 'colour'"},
+        BadScene{"unknown_top", "[lights]\nx = 1\n", 8, "unknown key 'lights'"},
+        BadScene{"wrong_type", "[camera]\nfov = \"wide\"\n", 9, "camera.fov: expected a number"},
+        BadScene{"nan", "[camera]\nfov = nan\n", 9, "not finite"},
+        BadScene{"inf_position", "[[light]]\nposition = [0, inf, 0]\nintensity = [1, 1, 1]\n", 9, "not finite"},
+        BadScene{"zero_resolution", "[camera]\nresolution = [0, 512]\n", 9, "resolution: value 0 outside [1, 16384]"},
+        BadScene{"absurd_resolution", "[camera]\nresolution = [1000000, 512]\n", 9, "value 1000000 outside"},
+        BadScene{"fov_axis", "[camera]\nfov_axis = \"z\"\n", 9, "expected \"x\" or \"y\""},
+        BadScene{"camera_degenerate", "[camera]\nposition = [0, 0, 0]\ntarget = [0, 0, 0]\n", 0,
+                 "camera target equals its position"},
+        BadScene{"up_parallel", "[camera]\nposition = [0, 0, 0]\ntarget = [0, 1, 0]\nup = [0, 2, 0]\n", 0,
+                 "parallel"},
+        BadScene{"albedo_range", "[[material]]\nname = \"hot\"\nalbedo = [1.2, 0.5, 0.5]\n", 10,
+                 "albedo: value 1.2 outside [0, 1]"},
+        BadScene{"negative_specular", "[[material]]\nname = \"s\"\nspecular = [-0.1, 0, 0]\n", 10, "outside [0, 1]"},
+        BadScene{"exponent", "[[material]]\nname = \"e\"\nexponent = 0\n", 10, "exponent: value 0 outside"},
+        BadScene{"duplicate_material", "[[material]]\nname = \"white\"\n", 9, "duplicate material name 'white'"},
+        BadScene{"unknown_material", "[[mesh]]\nfile = \"quad.obj\"\nmaterial = \"gold\"\n", 10,
+                 "no [[material]] named 'gold'"},
+        BadScene{"missing_mesh", "[[mesh]]\nfile = \"nothere.obj\"\n", 9, "file 'nothere.obj' not found"},
+        BadScene{"negative_scale", "[[mesh]]\nfile = \"quad.obj\"\nscale = -1.0\n", 10, "scale: value -1 must be positive"},
+        BadScene{"negative_emission", "[[mesh]]\nfile = \"quad.obj\"\nemission = [1, -1, 1]\n", 10,
+                 "emission: value -1 is negative"},
+        BadScene{"light_type", "[[light]]\ntype = \"area\"\nposition = [0, 1, 0]\nintensity = [1, 1, 1]\n", 9,
+                 "expected \"point\" or \"spot\""},
+        BadScene{"spot_cone", "[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\nintensity = [1, 1, 1]\n"
+                              "direction = [0, -1, 0]\ncone_angle = 0\n",
+                 13, "cone_angle: value 0 outside"},
+        BadScene{"spot_direction", "[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\nintensity = [1, 1, 1]\n"
+                                   "direction = [0, 0, 0]\ncone_angle = 10\n",
+                 12, "direction must not be zero"},
+        BadScene{"env_both", "[environment]\nradiance = [1, 1, 1]\nfile = \"x.hdr\"\n", 0, "exactly one of"},
+        BadScene{"keyframe_order", "[[mesh.keyframe]]\ntime = 1.0\n[[mesh.keyframe]]\ntime = 0.5\n", 11,
+                 "keyframe times must increase"},
+        BadScene{"syntax", "x = [1, 2\n", 0, "TOML syntax error"}),
+    [](const ::testing::TestParamInfo<BadScene>& param) { return std::string(param.param.name); });
+
+TEST(SceneLoader, MissingSceneFile) {
+    EXPECT_NE(loadError("/no/such/scene.toml").find("/no/such/scene.toml: file not found"), std::string::npos);
+}

@@ -1,0 +1,81 @@
+// The raster mode on the project's and the shared real scenes.
+#include "modes/raster/RasterTestSupport.h"
+#include "scene/SceneLoader.h"
+#include "support/TestFiles.h"
+
+using namespace bl;
+using bl::test::sharedPath;
+using bl::test::sourcePath;
+
+class RasterScenes : public bl::test::RasterTest {};
+
+TEST_F(RasterScenes, CornellRedWallOnTheLeftAndLightVisible) {
+    Scene s = loadScene(sourcePath("data/cornell-box/cornell.toml"));
+    s.camera.resolution = {64, 64};
+    ImageSet out = render(s);
+    const Image* albedo = nullptr;
+    for (const auto& [name, image] : out.layers) {
+        if (name == "albedo") albedo = &image;
+    }
+    ASSERT_TRUE(albedo);
+    // Middle row: red wall at the left edge, green at the right.
+    glm::vec3 left = albedo->at(2, 32), right = albedo->at(61, 32);
+    EXPECT_NEAR(left.x, 0.63f, 1e-3f);
+    EXPECT_NEAR(left.y, 0.065f, 1e-3f);
+    EXPECT_NEAR(right.y, 0.45f, 1e-3f);
+    // The light, seen from below, shows its radiance: it is the brightest thing in the image.
+    glm::vec3 brightest(0.0f);
+    for (const glm::vec3& p : out.radiance().pixels()) {
+        if (p.x > brightest.x) brightest = p;
+    }
+    EXPECT_EQ(brightest, glm::vec3(17.0f, 12.0f, 4.0f));
+}
+
+TEST_F(RasterScenes, ProgressiveJitterConvergesToTheBoxFilter) {
+    Scene s = loadScene(sourcePath("data/cornell-box/cornell-point.toml"));
+    s.camera.resolution = {48, 48};
+    Image one = render(s, 1).radiance();
+    Image many = render(s, 64).radiance();
+    Image fine = [&] {
+        Scene big = s;
+        big.camera.resolution = {192, 192};
+        return render(big, 4).radiance();
+    }();
+    // A 4x4 box of the 4x-resolution image approximates the same box filter.
+    double errMany = 0.0, errOne = 0.0;
+    for (int y = 0; y < 48; ++y) {
+        for (int x = 0; x < 48; ++x) {
+            glm::vec3 box(0.0f);
+            for (int j = 0; j < 4; ++j)
+                for (int i = 0; i < 4; ++i) box += fine.at(4 * x + i, 4 * y + j) / 16.0f;
+            errMany += std::abs(many.at(x, y).x - box.x);
+            errOne += std::abs(one.at(x, y).x - box.x);
+        }
+    }
+    EXPECT_LT(errMany, 0.5 * errOne) << "jittered " << errMany << " vs centre-sampled " << errOne;
+}
+
+TEST_F(RasterScenes, SharedScenesRenderCleanly) {
+    for (const char* path : {"data/external/cornell-mcguire.toml", "data/external/sponza-point.toml",
+                             "data/external/bunny-envmap.toml"}) {
+        SCOPED_TRACE(path);
+        Scene s = loadScene(sourcePath(path));
+        s.camera.resolution = {64, 64};
+        ImageSet out = render(s, 1, {"shadow_resolution=256"});
+        EXPECT_GT(out.radiance().mean().x, 0.0);
+    }
+}
+
+TEST_F(RasterScenes, ThinWallDoesNotLeakLight) {
+    // The camera's side of a wall 1/1000 of the room thick gets no direct light at all.
+    Scene s = loadScene(sourcePath("data/analytic/light-leak.toml"));
+    s.camera.resolution = {96, 96};
+    Image img = render(s, 1).radiance();
+    float brightest = 0.0f;
+    for (const glm::vec3& p : img.pixels()) brightest = std::max({brightest, p.x, p.y, p.z});
+    EXPECT_EQ(brightest, 0.0f);
+    // The same room seen from the lit side is lit: the test above can fail.
+    s.camera.pose.position = glm::vec3(0.05f, 0.5f, 0.5f);
+    s.camera.pose.target = glm::vec3(1.0f, 0.5f, 0.5f);
+    EXPECT_GT(render(s, 1).radiance().mean().x, 0.01);
+}

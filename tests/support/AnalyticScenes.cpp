@@ -1,0 +1,44 @@
+#include "support/AnalyticScenes.h"
+
+namespace bl::test {
+
+Mesh makeRectangle(glm::vec2 lo, glm::vec2 hi, float height, bool facingDown, std::uint32_t material) {
+    Mesh m;
+    m.name = "rectangle";
+    m.positions = {{lo.x, height, lo.y}, {hi.x, height, lo.y}, {hi.x, height, hi.y}, {lo.x, height, hi.y}};
+    glm::vec3 n(0.0f, facingDown ? -1.0f : 1.0f, 0.0f);
+    m.normals.assign(4, n);
+    // (lo,lo) -> (lo,hi) -> (hi,hi) has normal +y; the reverse order faces down.
+    m.triangles = facingDown ? std::vector<glm::uvec3>{{0, 1, 2}, {0, 2, 3}}
+                             : std::vector<glm::uvec3>{{0, 3, 2}, {0, 2, 1}};
+    m.material = material;
+    return m;
+}
+
+Mesh makeSquare(float size, std::uint32_t material, glm::vec3 centre) {
+    Mesh m = makeRectangle(glm::vec2(centre.x, centre.z) - size * 0.5f, glm::vec2(centre.x, centre.z) + size * 0.5f,
+                           centre.y, false, material);
+    m.name = "square";
+    return m;
+}
+
+Scene pointLightOverPlane(float albedo, float intensity, float h, int resolution) {
+    Scene s;
+    Material m;
+    m.name = "plane";
+    m.albedo = glm::vec3(albedo);
+    s.materials.push_back(m);
+    s.meshes.push_back(makeSquare(8.0f * h, 0));
+    Light l;
+    l.position = glm::vec3(0.0f, h, 0.0f);
+    l.intensity = glm::vec3(intensity);
+    s.lights.push_back(l);
+    s.camera.pose.position = glm::vec3(0.4f * h, 2.5f * h, 1.5f * h);
+    s.camera.pose.target = glm::vec3(0.0f);
+    s.camera.pose.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    s.camera.fovDegrees = 60.0f;
+    s.camera.resolution = glm::ivec2(resolution);
+    return s;
+}
+
+} // namespace bl::test
