@@ -63,44 +63,15 @@ void GBufferPass::record(VkCommandBuffer cmd, const shader::GpuCamera& camera, g
     std::memcpy(mCamera.data(), &camera, sizeof(camera));
     std::uint32_t scope = timer ? timer->start(cmd, "gbuffer") : 0;
 
-    std::array<VkRenderingAttachmentInfo, shader::kGBufferAttachmentCount> colors{};
-    for (std::uint32_t i = 0; i < colors.size(); ++i) {
-        vk::ImageTransition t;
-        t.newLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        t.dstStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-        t.dstAccess = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
-        vk::transitionImage(cmd, mAttachments[i].get(), t);
-        colors[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        colors[i].imageView = mAttachments[i].view();
-        colors[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        colors[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        colors[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        colors[i].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    vk::RenderTargets targets;
+    for (vk::GpuImage& a : mAttachments) {
+        vk::transitionImage(cmd, a.get(), vk::toColorAttachment());
+        targets.colors.push_back(a.view());
     }
-    vk::ImageTransition dt;
-    dt.newLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    dt.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
-    dt.dstStage = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-    dt.dstAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-    vk::transitionImage(cmd, mDepth.get(), dt);
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = mDepth.view();
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depth.clearValue.depthStencil = {0.0f, 0}; // reversed depth: 0 is infinitely far
-
-    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    info.renderArea = {{0, 0}, {mWidth, mHeight}};
-    info.layerCount = 1;
-    info.colorAttachmentCount = static_cast<std::uint32_t>(colors.size());
-    info.pColorAttachments = colors.data();
-    info.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &info);
-    VkViewport viewport{0.0f, 0.0f, float(mWidth), float(mHeight), 0.0f, 1.0f};
-    VkRect2D scissor{{0, 0}, {mWidth, mHeight}};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    vk::transitionImage(cmd, mDepth.get(), vk::toDepthAttachment());
+    targets.depth = mDepth.view();
+    targets.extent = {mWidth, mHeight};
+    vk::beginRendering(cmd, targets);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipeline.get());
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipelineLayout.get(), 0, 1, &mFrameSet, 0,
                             nullptr);
@@ -121,14 +92,7 @@ void GBufferPass::record(VkCommandBuffer cmd, const shader::GpuCamera& camera, g
     vkCmdEndRendering(cmd);
 
     for (vk::GpuImage& a : mAttachments) {
-        vk::ImageTransition t;
-        t.oldLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        t.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-        t.srcStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-        t.srcAccess = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
-        t.dstStage = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
-        t.dstAccess = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT;
-        vk::transitionImage(cmd, a.get(), t);
+        vk::transitionImage(cmd, a.get(), vk::colorAttachmentToGeneral());
     }
     if (timer) {
         timer->stop(cmd, scope);

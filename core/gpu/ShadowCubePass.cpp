@@ -36,60 +36,25 @@ ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, st
 }
 
 void ShadowCubePass::record(VkCommandBuffer cmd, double time, vk::GpuTimer* timer) {
-    vk::ImageTransition toAttachment;
-    toAttachment.newLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    toAttachment.dstStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-    toAttachment.dstAccess = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
-    vk::ImageTransition toGeneral;
-    toGeneral.oldLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    toGeneral.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-    toGeneral.srcStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-    toGeneral.srcAccess = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
-    toGeneral.dstStage = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    toGeneral.dstAccess = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
     if (mLightCount == 0) {
-        toAttachment.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-        vk::transitionImage(cmd, mMaps.get(), toAttachment);
+        vk::ImageTransition placeholder = vk::toColorAttachment();
+        placeholder.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+        vk::transitionImage(cmd, mMaps.get(), placeholder);
         return;
     }
     std::uint32_t scope = timer ? timer->start(cmd, "shadow maps") : 0;
-    vk::transitionImage(cmd, mMaps.get(), toAttachment);
+    vk::transitionImage(cmd, mMaps.get(), vk::toColorAttachment());
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipeline.get());
     mScene->bindGeometry(cmd);
-    VkViewport viewport{0.0f, 0.0f, float(mResolution), float(mResolution), 0.0f, 1.0f};
-    VkRect2D scissor{{0, 0}, {mResolution, mResolution}};
     for (std::uint32_t light = 0; light < mLightCount; ++light) {
         for (std::uint32_t face = 0; face < kFaces; ++face) {
-            vk::ImageTransition dt;
-            dt.newLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-            dt.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
-            dt.srcStage = VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-            dt.srcAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-            dt.dstStage = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-            dt.dstAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-            vk::transitionImage(cmd, mDepth.get(), dt);
-
-            VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-            color.imageView = mMaps.layerView(kFaces * light + face);
-            color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-            color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-            color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-            color.clearValue.color = {{std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f}};
-            VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-            depth.imageView = mDepth.view();
-            depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-            depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-            depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-            depth.clearValue.depthStencil = {0.0f, 0};
-            VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-            info.renderArea = scissor;
-            info.layerCount = 1;
-            info.colorAttachmentCount = 1;
-            info.pColorAttachments = &color;
-            info.pDepthAttachment = &depth;
-            vkCmdBeginRendering(cmd, &info);
-            vkCmdSetViewport(cmd, 0, 1, &viewport);
-            vkCmdSetScissor(cmd, 0, 1, &scissor);
+            vk::transitionImage(cmd, mDepth.get(), vk::toDepthAttachment());
+            vk::RenderTargets targets;
+            targets.colors = {mMaps.layerView(kFaces * light + face)};
+            targets.clearColor = {{std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f}};
+            targets.depth = mDepth.view();
+            targets.extent = {mResolution, mResolution};
+            vk::beginRendering(cmd, targets);
             for (const GpuDraw& d : mScene->draws()) {
                 shader::ShadowPush push{};
                 push.model = mScene->modelMatrix(d.mesh, time);
@@ -103,7 +68,7 @@ void ShadowCubePass::record(VkCommandBuffer cmd, double time, vk::GpuTimer* time
             vkCmdEndRendering(cmd);
         }
     }
-    vk::transitionImage(cmd, mMaps.get(), toGeneral);
+    vk::transitionImage(cmd, mMaps.get(), vk::colorAttachmentToGeneral());
     if (timer) {
         timer->stop(cmd, scope);
     }

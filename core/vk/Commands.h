@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 #include <vulkan/vulkan.h>
 
 namespace bl::vk {
@@ -19,6 +20,23 @@ struct ImageTransition {
 };
 
 void transitionImage(VkCommandBuffer cmd, VkImage image, const ImageTransition& t);
+
+// The transitions every raster pass makes: from anything (contents discarded) to a colour or
+// depth attachment, and from a written colour attachment to GENERAL for compute-shader reads.
+ImageTransition toColorAttachment();
+ImageTransition toDepthAttachment();
+ImageTransition colorAttachmentToGeneral();
+
+// Dynamic rendering into colour attachments (all cleared to `clearColor`) and an optional depth
+// attachment (cleared to `clearDepth`, not stored), with viewport and scissor covering `extent`.
+struct RenderTargets {
+    std::vector<VkImageView> colors;
+    VkClearColorValue clearColor{};
+    VkImageView depth = VK_NULL_HANDLE;
+    float clearDepth = 0.0f; // reversed depth: 0 is infinitely far
+    VkExtent2D extent{};
+};
+void beginRendering(VkCommandBuffer cmd, const RenderTargets& targets);
 
 // Makes all earlier writes of `srcStage` visible to `dstStage` (global memory barrier).
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkPipelineStageFlags2 dstStage);
