@@ -340,6 +340,27 @@ std::uint32_t Context::memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags 
     throw Error("no Vulkan memory type with the required properties");
 }
 
+VkDeviceSize Context::deviceLocalHeapBytes() const {
+    VkPhysicalDeviceMemoryProperties mem;
+    vkGetPhysicalDeviceMemoryProperties(mPhysical, &mem);
+    VkDeviceSize largest = 0;
+    for (std::uint32_t i = 0; i < mem.memoryHeapCount; ++i) {
+        if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) {
+            largest = std::max(largest, mem.memoryHeaps[i].size);
+        }
+    }
+    return largest;
+}
+
+void Context::requireDeviceMemory(VkDeviceSize bytes, const std::string& what) const {
+    const VkDeviceSize heap = deviceLocalHeapBytes();
+    if (bytes > heap) {
+        auto mib = [](VkDeviceSize b) { return std::to_string((b + (1u << 20) - 1) >> 20); };
+        throw Error(what + " needs " + mib(bytes) + " MiB of device memory, more than the " + mib(heap) +
+                    " MiB heap of '" + mInfo.name + "'");
+    }
+}
+
 std::size_t Context::validationErrorCount() const {
     std::lock_guard lock(mMessageMutex);
     return mErrors.size();

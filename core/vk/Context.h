@@ -54,6 +54,12 @@ public:
     std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
                              VkMemoryPropertyFlags preferred = 0) const;
 
+    // Size of the largest device-local memory heap.
+    VkDeviceSize deviceLocalHeapBytes() const;
+    // Throws a clear error when `bytes` cannot fit in device memory, before any allocation is tried
+    // (an impossible request must be an error, not an out-of-memory crash). `what` names the user.
+    void requireDeviceMemory(VkDeviceSize bytes, const std::string& what) const;
+
     // Validation messages of severity error since creation (always 0 without validation).
     std::size_t validationErrorCount() const;
     std::vector<std::string> validationErrors() const;

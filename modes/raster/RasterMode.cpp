@@ -7,6 +7,7 @@
 #include "vk/Descriptors.h"
 
 #include <cmath>
+#include <cstring>
 #include <modes/raster/RasterShared.h>
 #include <modes/raster/shade.comp.spv.h>
 #include <shared/Bindings.h>
@@ -31,7 +32,8 @@ struct RasterMode::Gpu {
     std::unique_ptr<gpu::GpuScene> scene;
     std::unique_ptr<gpu::GBufferPass> gbuffer;
     std::unique_ptr<gpu::ShadowCubePass> shadows;
-    vk::Buffer accum;    // vec4 per pixel: running radiance sum, sample count
+    vk::GpuImage accum;  // rgba32f per pixel: running radiance sum, sample count (an image: no
+                         // 128 MiB storage-buffer limit on large frames)
     vk::Buffer counters; // [0] non-finite samples
     vk::DescriptorSetLayout setLayout;
     vk::DescriptorPool pool;
@@ -83,13 +85,19 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
 
+    // G-buffer (4 x rgba32f + depth), accumulation (rgba32f), shadow cubes (r32f) + their depth.
+    const VkDeviceSize pixels = VkDeviceSize(width) * height;
+    const VkDeviceSize shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
+    const VkDeviceSize lights = scene.lights.size();
+    ctx->requireDeviceMemory(pixels * (4 * 16 + 4 + 16) + shadowSide * shadowSide * 4 * (6 * lights + 1),
+                             "raster at " + std::to_string(width) + "x" + std::to_string(height));
+
     auto g = std::make_unique<Gpu>();
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
     g->gbuffer = std::make_unique<gpu::GBufferPass>(*ctx, *g->scene, width, height);
     g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene,
                                                        static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution)));
-    g->accum = vk::Buffer(*ctx, VkDeviceSize(width) * height * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                          vk::MemoryUse::Device);
+    g->accum = vk::GpuImage(*ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
     g->counters = vk::Buffer(*ctx, sizeof(std::uint32_t) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Device);
     g->timer = vk::GpuTimer(*ctx);
 
@@ -101,7 +109,7 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
                  {shader::kRasterBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                  {shader::kRasterBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
                  {shader::kRasterBindingEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs},
-                 {shader::kRasterBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kRasterBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
                  {shader::kRasterBindingCounters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
     g->pool = vk::DescriptorPool(device, 1, 8);
     g->set = g->pool.allocate(g->setLayout.get());
@@ -117,7 +125,7 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
                VK_IMAGE_LAYOUT_GENERAL)
         .image(shader::kRasterBindingEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                g->scene->environmentView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, g->scene->environmentSampler())
-        .buffer(shader::kRasterBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->accum.get())
+        .image(shader::kRasterBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->accum.view(), VK_IMAGE_LAYOUT_GENERAL)
         .buffer(shader::kRasterBindingCounters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->counters.get())
         .update(device, g->set);
     VkDescriptorSetLayout layouts[] = {g->setLayout.get()};
@@ -125,7 +133,11 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->pipeline = vk::makeComputePipeline(device, kSpv_modes_raster_shade_comp, g->pipelineLayout.get());
 
     ctx->submitAndWait([&](VkCommandBuffer cmd) {
-        vkCmdFillBuffer(cmd, g->accum.get(), 0, VK_WHOLE_SIZE, 0);
+        vk::ImageTransition toGeneral;
+        vk::transitionImage(cmd, g->accum.get(), toGeneral);
+        VkClearColorValue zero{};
+        VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, g->accum.get(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
         vkCmdFillBuffer(cmd, g->counters.get(), 0, VK_WHOLE_SIZE, 0);
     });
     mGpu = std::move(g);
@@ -184,8 +196,9 @@ ImageSet RasterMode::resolve() {
     Gpu& g = *mGpu;
     const int width = static_cast<int>(g.gbuffer->width());
     const int height = static_cast<int>(g.gbuffer->height());
+    std::vector<std::byte> bytes = g.accum.download(*mContext, VK_IMAGE_LAYOUT_GENERAL);
     std::vector<glm::vec4> sums(static_cast<std::size_t>(width) * height);
-    g.accum.download(*mContext, sums.data(), sums.size() * sizeof(glm::vec4));
+    std::memcpy(sums.data(), bytes.data(), bytes.size());
     std::uint32_t counters[4] = {};
     g.counters.download(*mContext, counters, sizeof(counters));
 
@@ -200,8 +213,8 @@ ImageSet RasterMode::resolve() {
 
     // AOVs of the last iteration's G-buffer, for inspection and later denoisers.
     auto aov = [&](std::uint32_t attachment, const char* name) {
-        std::vector<std::byte> bytes = g.gbuffer->attachment(attachment).download(*mContext, VK_IMAGE_LAYOUT_GENERAL);
-        const auto* texels = reinterpret_cast<const glm::vec4*>(bytes.data());
+        std::vector<std::byte> raw = g.gbuffer->attachment(attachment).download(*mContext, VK_IMAGE_LAYOUT_GENERAL);
+        const auto* texels = reinterpret_cast<const glm::vec4*>(raw.data());
         Image image(width, height);
         for (std::size_t i = 0; i < image.pixelCount(); ++i) {
             image.pixels()[i] = glm::vec3(texels[i]);

@@ -25,7 +25,7 @@ BL_CONST uint kRasterBindingMaterials = 2u;  // storage GpuMaterial[]
 BL_CONST uint kRasterBindingLights = 3u;     // storage GpuLight[]
 BL_CONST uint kRasterBindingShadowMaps = 4u; // sampled 2D array (r32f), layers 6 l .. 6 l + 5 = light l
 BL_CONST uint kRasterBindingEnvironment = 5u; // combined sampler, lat-long rgba32f
-BL_CONST uint kRasterBindingAccum = 6u;      // storage vec4[] running sum of radiance
+BL_CONST uint kRasterBindingAccum = 6u;      // storage image (rgba32f): radiance sum, sample count
 BL_CONST uint kRasterBindingCounters = 7u;   // storage uint[]: [0] non-finite samples
 
 BL_NAMESPACE_END

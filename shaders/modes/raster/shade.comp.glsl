@@ -19,7 +19,7 @@ layout(set = 0, binding = kRasterBindingMaterials) readonly buffer MaterialBlock
 layout(set = 0, binding = kRasterBindingLights) readonly buffer LightBlock { GpuLight lights[]; };
 layout(set = 0, binding = kRasterBindingShadowMaps, r32f) uniform readonly image2DArray shadowMaps;
 layout(set = 0, binding = kRasterBindingEnvironment) uniform sampler2D environment;
-layout(set = 0, binding = kRasterBindingAccum) buffer AccumBlock { vec4 accum[]; };
+layout(set = 0, binding = kRasterBindingAccum, rgba32f) uniform image2D accum;
 layout(set = 0, binding = kRasterBindingCounters) buffer CounterBlock { uint nonFiniteSamples; };
 layout(push_constant) uniform PushBlock { RasterPush push; };
 
@@ -115,10 +115,9 @@ void main() {
     } else {
         radiance = vec3(0.0);
     }
-    uint index = uint(pixel.y) * push.width + uint(pixel.x);
     if (any(isnan(radiance)) || any(isinf(radiance))) {
         atomicAdd(nonFiniteSamples, 1u);
         return; // never averaged in: the pixel's sample count (w) does not grow
     }
-    accum[index] += vec4(radiance, 1.0);
+    imageStore(accum, pixel, imageLoad(accum, pixel) + vec4(radiance, 1.0));
 }

@@ -187,3 +187,17 @@ TEST_F(RasterAnalytic, EnvironmentOrientation) {
     EXPECT_TRUE(near(centre({-1, 0, -1}, 0.0f), {2, 0, 0})); // u = 0.125
     EXPECT_TRUE(near(centre({1, 0, 1}, 90.0f), {2, 2, 2}));  // rotated by +90 degrees about +y
 }
+
+TEST_F(RasterAnalytic, TexturedAlbedoIsSrgbDecoded) {
+    // A uniform 8-bit texture of sRGB code 188 stands for linear albedo srgbToLinear(188/255).
+    Rgba8Image texture{4, 4, std::vector<unsigned char>(4 * 4 * 4, 188)};
+    Scene s = pointLightOverPlane(kAlbedo, kIntensity, kHeight, 32);
+    s.textures.push_back({"uniform", texture});
+    s.materials[0].albedoTexture = 0;
+    s.meshes[0].uvs.assign(s.meshes[0].positions.size(), glm::vec2(0.3f, 0.6f));
+    Image img = render(s).radiance();
+    float t;
+    glm::vec3 p = hitPlane(s, 16, 16, 0.0f, t);
+    float expected = pointLitRadiance(p, s.lights[0].position, kIntensity) / kAlbedo * srgbToLinear(188.0f / 255.0f);
+    EXPECT_NEAR(img.at(16, 16).x, expected, 0.01f * expected);
+}

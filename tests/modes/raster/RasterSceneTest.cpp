@@ -79,3 +79,27 @@ TEST_F(RasterScenes, ThinWallDoesNotLeakLight) {
     s.camera.pose.target = glm::vec3(1.0f, 0.5f, 0.5f);
     EXPECT_GT(render(s, 1).radiance().mean().x, 0.01);
 }
+
+TEST_F(RasterScenes, AnimatedSceneFollowsSceneTime) {
+    Scene s = loadScene(sourcePath("data/cornell-box/cornell-animated.toml"));
+    s.camera.resolution = {64, 64};
+    ASSERT_TRUE(s.features().animated);
+    std::unique_ptr<Mode> mode = createMode("raster", {"shadow_resolution=256"});
+    mode->setScene(s, &ctx());
+    mode->iterate({0, 0, 0.0});
+    Image start = mode->resolve().radiance();
+    mode->setScene(s, &ctx());
+    mode->iterate({0, 0, 2.0});
+    Image end = mode->resolve().radiance();
+    double difference = 0.0;
+    for (std::size_t i = 0; i < start.pixelCount(); ++i) difference += std::abs(start.pixels()[i].x - end.pixels()[i].x);
+    EXPECT_GT(difference / start.pixelCount(), 1e-3);
+    // Shadow maps are re-rendered when the time changes (and only then for static scenes).
+    PassTimes passes = mode->timings();
+    auto shadow = std::find_if(passes.begin(), passes.end(), [](const PassTime& p) { return p.name == "shadow maps"; });
+    ASSERT_NE(shadow, passes.end());
+    mode->iterate({1, 0, 2.0});
+    passes = mode->timings();
+    shadow = std::find_if(passes.begin(), passes.end(), [](const PassTime& p) { return p.name == "shadow maps"; });
+    EXPECT_EQ(shadow->count, 1u);
+}
