@@ -14,5 +14,8 @@ void addInfoCommand(CLI::App& app, Action& action);
 void addModesCommand(CLI::App& app, Action& action);
 void addPlanCommand(CLI::App& app, Action& action);
 void addDevicesCommand(CLI::App& app, Action& action);
+void addCompareCommand(CLI::App& app, Action& action);
+void addStatsCommand(CLI::App& app, Action& action);
+void addReplayCommand(CLI::App& app, Action& action);
 
 } // namespace bl::cli

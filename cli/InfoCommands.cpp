@@ -1,11 +1,16 @@
 // bundlelab info | modes | plan | devices
 #include "base/Error.h"
 #include "cli/Commands.h"
+#include "image/ImageIO.h"
 #include "modes/Registry.h"
 #include "scene/SceneLoader.h"
 #include "vk/Context.h"
 
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 
 namespace bl::cli {
@@ -62,6 +67,30 @@ void addPlanCommand(CLI::App& app, Action& action) {
             Scene scene = loadScene(*scenePath);
             for (const PlannedPass& p : mode->plan(scene)) {
                 std::cout << (p.runs ? "  run   " : "  skip  ") << p.name << ": " << p.reason << "\n";
+            }
+            return 0;
+        };
+    });
+}
+
+void addStatsCommand(CLI::App& app, Action& action) {
+    auto path = std::make_shared<std::string>();
+    CLI::App* cmd = app.add_subcommand("stats", "print size, mean, min, max and non-finite pixels of every image layer");
+    cmd->add_option("image", *path, "EXR, HDR or PNG")->required();
+    cmd->callback([path, &action] {
+        action = [path] {
+            bool exr = std::filesystem::path(*path).extension() == ".exr";
+            for (const std::string& layer : exr ? exrLayers(*path) : std::vector<std::string>{""}) {
+                Image img = readImage(*path, layer);
+                glm::dvec3 mean = img.mean();
+                glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+                for (const glm::vec3& p : img.pixels()) {
+                    lo = glm::min(lo, p);
+                    hi = glm::max(hi, p);
+                }
+                std::printf("%-10s %dx%d  mean %.6g %.6g %.6g  min %.4g  max %.4g  non-finite %zu\n",
+                            layer.empty() ? "(rgb)" : layer.c_str(), img.width(), img.height(), mean.x, mean.y, mean.z,
+                            std::min({lo.x, lo.y, lo.z}), std::max({hi.x, hi.y, hi.z}), img.countNonFinite());
             }
             return 0;
         };

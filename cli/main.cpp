@@ -16,6 +16,9 @@ int main(int argc, char** argv) {
     bl::cli::addModesCommand(app, action);
     bl::cli::addPlanCommand(app, action);
     bl::cli::addDevicesCommand(app, action);
+    bl::cli::addCompareCommand(app, action);
+    bl::cli::addStatsCommand(app, action);
+    bl::cli::addReplayCommand(app, action);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

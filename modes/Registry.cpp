@@ -2,6 +2,7 @@
 
 #include "base/Error.h"
 #include "modes/raster/RasterMode.h"
+#include "modes/reference/ReferenceMode.h"
 
 namespace bl {
 
@@ -9,6 +10,8 @@ namespace {
 const ModeEntry kModes[] = {
     {"raster", "rasterized direct light from point/spot lights (cube shadow maps), emitters, environment",
      true, &RasterMode::parameters, &RasterMode::create},
+    {"reference", "CPU path tracer (Embree): ground truth, layers by path length, per-pixel variance", false,
+     &ReferenceMode::parameters, &ReferenceMode::create},
 };
 } // namespace
 

@@ -1,5 +1,7 @@
 #include "support/AnalyticScenes.h"
 
+#include <shared/Camera.h>
+
 namespace bl::test {
 
 Mesh makeRectangle(glm::vec2 lo, glm::vec2 hi, float height, bool facingDown, std::uint32_t material) {
@@ -39,6 +41,20 @@ Scene pointLightOverPlane(float albedo, float intensity, float h, int resolution
     s.camera.fovDegrees = 60.0f;
     s.camera.resolution = glm::ivec2(resolution);
     return s;
+}
+
+glm::vec3 cameraRayHitY(const Scene& scene, glm::vec2 pixel, float planeY, float& t) {
+    shader::GpuCamera cam = makeGpuCamera(scene.camera, 0.0, 1.0f);
+    glm::vec3 d = shader::blCameraRayDirection(cam, pixel);
+    t = (planeY - cam.position.y) / d.y;
+    return cam.position + t * d;
+}
+
+float pointLitFloorRadiance(glm::vec3 p, glm::vec3 light, float intensity, float albedo) {
+    glm::vec3 toLight = light - p;
+    float r2 = glm::dot(toLight, toLight);
+    float cosine = toLight.y / std::sqrt(r2);
+    return albedo / shader::kPi * intensity * cosine / r2;
 }
 
 } // namespace bl::test

@@ -14,4 +14,12 @@ Mesh makeRectangle(glm::vec2 lo, glm::vec2 hi, float height, bool facingDown, st
 // above the origin, seen obliquely by a camera of `resolution`.
 Scene pointLightOverPlane(float albedo, float intensity, float h, int resolution);
 
+// Where the camera ray through continuous pixel position `pixel` (pixel centre: index + 0.5)
+// meets the plane y = planeY (t <= 0: never).
+glm::vec3 cameraRayHitY(const Scene& scene, glm::vec2 pixel, float planeY, float& t);
+
+// Radiance of a Lambertian floor (normal +y) of albedo rho at p lit by a point light of intensity
+// I at `light`: rho / pi * I cos(theta) / r^2.
+float pointLitFloorRadiance(glm::vec3 p, glm::vec3 light, float intensity, float albedo);
+
 } // namespace bl::test

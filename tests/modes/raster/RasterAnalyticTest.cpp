@@ -3,7 +3,6 @@
 #include "modes/raster/RasterTestSupport.h"
 #include "support/AnalyticScenes.h"
 
-#include <shared/Camera.h>
 
 using namespace bl;
 using bl::test::makeRectangle;
@@ -16,20 +15,12 @@ constexpr float kIntensity = 10.0f;
 constexpr float kHeight = 1.0f;
 constexpr int kResolution = 128;
 
-// Where the camera ray through pixel centre (x, y) meets the plane y = planeY (t < 0: never).
 glm::vec3 hitPlane(const Scene& s, int x, int y, float planeY, float& t) {
-    shader::GpuCamera cam = makeGpuCamera(s.camera, 0.0, 1.0f);
-    glm::vec3 d = shader::blCameraRayDirection(cam, glm::vec2(x + 0.5f, y + 0.5f));
-    t = (planeY - cam.position.y) / d.y;
-    return cam.position + t * d;
+    return bl::test::cameraRayHitY(s, glm::vec2(x + 0.5f, y + 0.5f), planeY, t);
 }
 
-// Radiance of the Lambertian floor at p lit by a point light: rho/pi I cos(theta) / r^2.
 float pointLitRadiance(glm::vec3 p, glm::vec3 light, float intensity) {
-    glm::vec3 toLight = light - p;
-    float r2 = glm::dot(toLight, toLight);
-    float cosine = toLight.y / std::sqrt(r2);
-    return kAlbedo / shader::kPi * intensity * cosine / r2;
+    return bl::test::pointLitFloorRadiance(p, light, intensity, kAlbedo);
 }
 
 Scene withOccluder(float scale = 1.0f) {

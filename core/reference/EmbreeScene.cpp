@@ -1,0 +1,157 @@
+#include "reference/EmbreeScene.h"
+
+#include "base/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace bl {
+
+namespace {
+// Ray offset in units of the triangle's largest coordinate: ~140 float ulps, well above the
+// error of a barycentric hit point (a few ulps) and below any modelled detail.
+constexpr float kRelativeRayOffset = 1.0e-5f;
+
+void onEmbreeError(void*, RTCError code, const char* message) {
+    // Embree calls back from its own threads; errors are re-checked after each build.
+    (void)code;
+    (void)message;
+}
+
+float maxAbs(const glm::vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+} // namespace
+
+EmbreeScene::EmbreeScene(const Scene& scene, double time) : mScene(&scene) {
+    mDevice = rtcNewDevice(nullptr);
+    if (!mDevice) {
+        throw Error("Embree: cannot create a device (" + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    }
+    rtcSetDeviceErrorFunction(mDevice, onEmbreeError, nullptr);
+    mRtcScene = rtcNewScene(mDevice);
+    rtcSetSceneBuildQuality(mRtcScene, RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneFlags(mRtcScene, RTC_SCENE_FLAG_ROBUST);
+    for (std::uint32_t i = 0; i < scene.meshes.size(); ++i) {
+        const Mesh& m = scene.meshes[i];
+        glm::mat4 model = m.animation.at(time);
+        glm::mat3 normalMatrix = glm::mat3(model); // rigid: rotation only
+        std::vector<glm::vec3>& pos = mPositions.emplace_back(m.positions.size());
+        std::vector<glm::vec3>& nrm = mNormals.emplace_back(m.normals.size());
+        for (std::size_t v = 0; v < m.positions.size(); ++v) {
+            pos[v] = glm::vec3(model * glm::vec4(m.positions[v], 1.0f));
+        }
+        for (std::size_t v = 0; v < m.normals.size(); ++v) {
+            nrm[v] = glm::normalize(normalMatrix * m.normals[v]);
+        }
+        RTCGeometry geom = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                               3 * sizeof(float), pos.size()));
+        auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                  3 * sizeof(unsigned), m.triangles.size()));
+        if (!vb || !ib) {
+            rtcReleaseGeometry(geom);
+            throw Error("Embree: cannot allocate buffers for mesh " + m.name);
+        }
+        for (std::size_t v = 0; v < pos.size(); ++v) {
+            vb[3 * v] = pos[v].x;
+            vb[3 * v + 1] = pos[v].y;
+            vb[3 * v + 2] = pos[v].z;
+        }
+        for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+            ib[3 * t] = m.triangles[t].x;
+            ib[3 * t + 1] = m.triangles[t].y;
+            ib[3 * t + 2] = m.triangles[t].z;
+        }
+        rtcCommitGeometry(geom);
+        rtcAttachGeometryByID(mRtcScene, geom, i); // geomID == mesh index
+        rtcReleaseGeometry(geom);
+    }
+    rtcCommitScene(mRtcScene);
+    if (RTCError e = rtcGetDeviceError(mDevice); e != RTC_ERROR_NONE) {
+        throw Error("Embree: scene build failed with error " + std::to_string(e));
+    }
+}
+
+EmbreeScene::~EmbreeScene() {
+    if (mRtcScene) rtcReleaseScene(mRtcScene);
+    if (mDevice) rtcReleaseDevice(mDevice);
+}
+
+void EmbreeScene::triangle(std::uint32_t mesh, std::uint32_t tri, glm::vec3& a, glm::vec3& b, glm::vec3& c) const {
+    const glm::uvec3& t = mScene->meshes[mesh].triangles[tri];
+    const std::vector<glm::vec3>& p = mPositions[mesh];
+    a = p[t.x];
+    b = p[t.y];
+    c = p[t.z];
+}
+
+glm::vec3 EmbreeScene::offsetOrigin(const glm::vec3& p, const glm::vec3& normal, float offsetScale) {
+    return p + normal * (kRelativeRayOffset * std::max(offsetScale, maxAbs(p)));
+}
+
+bool EmbreeScene::intersect(const glm::vec3& origin, const glm::vec3& direction, float tMax, SurfaceHit& hit) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray.org_x = origin.x;
+    rh.ray.org_y = origin.y;
+    rh.ray.org_z = origin.z;
+    rh.ray.dir_x = direction.x;
+    rh.ray.dir_y = direction.y;
+    rh.ray.dir_z = direction.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = tMax;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = ~0u;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(mRtcScene, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        return false;
+    }
+    const std::uint32_t meshIndex = rh.hit.geomID;
+    const Mesh& mesh = mScene->meshes[meshIndex];
+    const glm::uvec3& tri = mesh.triangles[rh.hit.primID];
+    glm::vec3 a, b, c;
+    triangle(meshIndex, rh.hit.primID, a, b, c);
+    const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
+    hit.t = rh.ray.tfar;
+    hit.mesh = meshIndex;
+    hit.triangle = rh.hit.primID;
+    hit.position = w * a + u * b + v * c;
+    hit.geometricNormal = glm::normalize(glm::cross(b - a, c - a));
+    const std::vector<glm::vec3>& n = mNormals[meshIndex];
+    glm::vec3 ns = w * n[tri.x] + u * n[tri.y] + v * n[tri.z];
+    float len = glm::length(ns);
+    hit.shadingNormal = len > 1e-20f ? ns / len : hit.geometricNormal;
+    if (glm::dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) {
+        hit.shadingNormal = -hit.shadingNormal;
+    }
+    hit.uv = mesh.uvs.empty() ? glm::vec2(0.0f) : w * mesh.uvs[tri.x] + u * mesh.uvs[tri.y] + v * mesh.uvs[tri.z];
+    hit.offsetScale = std::max({maxAbs(a), maxAbs(b), maxAbs(c)});
+    return true;
+}
+
+bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tMax) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray;
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.dir_x = direction.x;
+    ray.dir_y = direction.y;
+    ray.dir_z = direction.z;
+    ray.tnear = 0.0f;
+    ray.tfar = tMax;
+    ray.time = 0.0f;
+    ray.mask = ~0u;
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(mRtcScene, &context, &ray);
+    return ray.tfar < 0.0f;
+}
+
+} // namespace bl

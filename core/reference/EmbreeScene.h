@@ -1,0 +1,51 @@
+// The Scene as Embree 3 sees it: one triangle geometry per mesh, baked at one scene time.
+// Gives closest hits with everything shading needs, and occlusion tests.
+#pragma once
+
+#include "scene/Scene.h"
+
+#include <embree3/rtcore.h>
+#include <glm/glm.hpp>
+
+namespace bl {
+
+struct SurfaceHit {
+    float t = 0.0f;
+    glm::vec3 position{0.0f};
+    glm::vec3 geometricNormal{0.0f}; // unit, the counter-clockwise (front) side
+    glm::vec3 shadingNormal{0.0f};   // unit, interpolated, on the front side
+    glm::vec2 uv{0.0f};
+    std::uint32_t mesh = 0;
+    std::uint32_t triangle = 0;
+    float offsetScale = 0.0f; // magnitude of the triangle's coordinates, for ray offsets
+};
+
+class EmbreeScene {
+public:
+    EmbreeScene(const Scene& scene, double time);
+    ~EmbreeScene();
+    EmbreeScene(const EmbreeScene&) = delete;
+    EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+    bool intersect(const glm::vec3& origin, const glm::vec3& direction, float tMax, SurfaceHit& hit) const;
+    // True if anything lies on the open segment origin + t direction, 0 < t < tMax.
+    bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tMax) const;
+
+    // World-space vertices of a triangle (at the baked time).
+    void triangle(std::uint32_t mesh, std::uint32_t tri, glm::vec3& a, glm::vec3& b, glm::vec3& c) const;
+    const Scene& scene() const { return *mScene; }
+
+    // Origin for a ray leaving a surface point on the side of `normal` (oriented toward the ray):
+    // pushed off by a few ulps of the triangle's coordinates, so rays never re-hit their own
+    // triangle and the offset stays far below any real feature at every scene scale.
+    static glm::vec3 offsetOrigin(const glm::vec3& p, const glm::vec3& normal, float offsetScale);
+
+private:
+    const Scene* mScene;
+    RTCDevice mDevice = nullptr;
+    RTCScene mRtcScene = nullptr;
+    std::vector<std::vector<glm::vec3>> mPositions; // world space, per mesh
+    std::vector<std::vector<glm::vec3>> mNormals;
+};
+
+} // namespace bl

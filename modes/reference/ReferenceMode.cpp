@@ -1,0 +1,102 @@
+#include "modes/reference/ReferenceMode.h"
+
+#include "base/Error.h"
+#include "scene/Scene.h"
+
+namespace bl {
+
+std::vector<ParamSpec> ReferenceMode::parameters() {
+    return {
+        {kMaxSegments, std::int64_t{64}, "segments",
+         "longest path (1: emitters only, 2: direct light; the shared references use 64)", 1, 100000, {}},
+        {kRrDepth, std::int64_t{5}, "segments", "path length after which Russian roulette may end a path", 1, 100000, {}},
+        {kThreads, std::int64_t{0}, "threads", "CPU worker threads (0: all hardware threads)", 0, 4096, {}},
+        {kEnvSampling, std::string("luminance"), "", "environment-map light sampling", 0, 0, {"luminance", "uniform"}},
+    };
+}
+
+std::unique_ptr<Mode> ReferenceMode::create(const Settings& settings) { return std::make_unique<ReferenceMode>(settings); }
+
+ReferenceMode::ReferenceMode(const Settings& settings) : mSettings(settings) {}
+ReferenceMode::~ReferenceMode() = default;
+
+ReferenceSettings ReferenceMode::rendererSettings() const {
+    ReferenceSettings s;
+    s.path.maxSegments = static_cast<int>(mSettings.getInt(kMaxSegments));
+    s.path.rrDepth = static_cast<int>(mSettings.getInt(kRrDepth));
+    s.threads = static_cast<int>(mSettings.getInt(kThreads));
+    s.environmentImportance = mSettings.getString(kEnvSampling) == "luminance";
+    return s;
+}
+
+std::vector<PlannedPass> ReferenceMode::plan(const Scene& scene) const {
+    SceneFeatures f = scene.features();
+    std::vector<PlannedPass> passes;
+    passes.push_back({"build BVH", true, std::to_string(f.triangles) + " triangles (Embree, high quality)"});
+    passes.push_back({"trace", true, "1 path per pixel per iteration, at most " +
+                                         std::to_string(mSettings.getInt(kMaxSegments)) + " segments"});
+    passes.push_back({"emitter sampling", f.emissiveTriangles > 0,
+                      f.emissiveTriangles ? std::to_string(f.emissiveTriangles) + " emissive triangles, by power"
+                                          : "no emissive triangles"});
+    passes.push_back({"environment sampling", f.environment,
+                      f.environment ? (f.environmentMap ? "by " + mSettings.getString(kEnvSampling) : "constant: uniform")
+                                    : "no environment"});
+    passes.push_back({"point/spot lights", f.shadowCastingLights() > 0,
+                      std::to_string(f.shadowCastingLights()) + " delta light(s), every one at every vertex"});
+    return passes;
+}
+
+void ReferenceMode::setScene(const Scene& scene, vk::Context*) {
+    mScene = &scene;
+    mRenderer.reset();
+    mTime.reset();
+    mTimes.clear();
+}
+
+void ReferenceMode::iterate(const IterationInfo& info) {
+    if (!mScene) {
+        throw Error("reference: iterate() before setScene()");
+    }
+    using Clock = std::chrono::steady_clock;
+    if (!mRenderer || !mTime || *mTime != info.time) {
+        // A new scene time is a new image: the accumulation restarts.
+        auto start = Clock::now();
+        mRenderer = std::make_unique<ReferenceRenderer>(*mScene, info.time, rendererSettings());
+        mTime = info.time;
+        double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        mTimes = {{"build BVH", ms, 1}, {"trace", 0.0, 0}};
+    }
+    auto start = Clock::now();
+    mRenderer->renderPass(mRenderer->samples(), static_cast<std::uint32_t>(info.seed));
+    mTimes[1].totalMs += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    mTimes[1].count += 1;
+}
+
+ImageSet ReferenceMode::resolve() {
+    if (!mScene) {
+        throw Error("reference: resolve() before setScene()");
+    }
+    if (!mRenderer) {
+        mRenderer = std::make_unique<ReferenceRenderer>(*mScene, 0.0, rendererSettings());
+        mTime = 0.0;
+    }
+    ImageSet out;
+    out.iterations = mRenderer->samples();
+    out.nonFiniteSamples = mRenderer->nonFiniteSamples();
+    out.layers.emplace_back("", mRenderer->mean());
+    for (int l = 0; l < kPathLayerCount; ++l) {
+        out.layers.emplace_back(kPathLayerNames[l], mRenderer->layer(l));
+    }
+    out.layers.emplace_back("variance", mRenderer->varianceOfMean());
+    return out;
+}
+
+PathSample ReferenceMode::replay(int x, int y, std::uint32_t sampleIndex, std::uint32_t seed,
+                                 std::vector<std::string>& log) {
+    if (!mRenderer) {
+        mRenderer = std::make_unique<ReferenceRenderer>(*mScene, mTime.value_or(0.0), rendererSettings());
+    }
+    return mRenderer->replay(x, y, sampleIndex, seed, log);
+}
+
+} // namespace bl
