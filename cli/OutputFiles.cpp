@@ -47,6 +47,14 @@ std::vector<std::string> writeRenderOutputs(const std::string& exrPath, const Im
         w.field("iterations", images.iterations).field("seed", static_cast<unsigned long long>(record.seed));
         w.field("wall_seconds", record.wallSeconds).field("partial", record.partial);
         w.field("non_finite_samples", static_cast<unsigned long long>(images.nonFiniteSamples));
+        const double samples = double(images.radiance().pixelCount()) * images.iterations;
+        w.field("samples_per_second", record.wallSeconds > 0.0 ? samples / record.wallSeconds : 0.0);
+        w.key("counters").beginObject();
+        for (const auto& [name, value] : images.counters) {
+            w.field(name, value);
+            w.field(name + "_per_second", record.wallSeconds > 0.0 ? value / record.wallSeconds : 0.0);
+        }
+        w.endObject();
         w.key("settings").beginObject();
         for (const auto& [k, v] : mode.settings().resolved()) {
             w.field(k, v);

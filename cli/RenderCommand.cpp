@@ -8,6 +8,7 @@
 #include "scene/SceneLoader.h"
 #include "vk/Context.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <cstdio>
@@ -32,7 +33,14 @@ struct RenderOptions {
     std::string device;
     bool validation = false;
     std::vector<std::string> assignments;
+    std::vector<std::uint32_t> checkpoints;
 };
+
+// FILE.exr -> FILE.<iterations>.exr
+std::string checkpointPath(const std::string& out, std::uint32_t iterations) {
+    std::filesystem::path p(out);
+    return (p.parent_path() / (p.stem().string() + "." + std::to_string(iterations) + ".exr")).string();
+}
 
 void printTimings(const Mode& mode) {
     PassTimes passes = mode.timings();
@@ -80,6 +88,11 @@ int runRender(const RenderOptions& o) {
         while (iterations ? done < iterations : elapsed() < o.seconds) {
             mode->iterate({done, o.seed, o.time});
             ++done;
+            if (std::find(o.checkpoints.begin(), o.checkpoints.end(), done) != o.checkpoints.end()) {
+                record.wallSeconds = elapsed();
+                writeRenderOutputs(checkpointPath(o.out, done), mode->resolve(), *mode, record);
+                std::cout << "checkpoint " << done << ": " << checkpointPath(o.out, done) << "\n";
+            }
         }
     } catch (const std::exception& e) {
         // Keep what was computed: write it as <out>.partial.exr, then report the error.
@@ -95,8 +108,13 @@ int runRender(const RenderOptions& o) {
     record.wallSeconds = elapsed();
     ImageSet images = mode->resolve();
     std::vector<std::string> written = writeRenderOutputs(o.out, images, *mode, record);
-    std::printf("%s: %s, %u iterations, %dx%d, %.3f s\n", o.mode.c_str(), o.scene.c_str(), done,
-                images.radiance().width(), images.radiance().height(), record.wallSeconds);
+    const double samples = double(images.radiance().pixelCount()) * done;
+    std::printf("%s: %s, %u iterations, %dx%d, %.3f s, %.4g samples/s\n", o.mode.c_str(), o.scene.c_str(), done,
+                images.radiance().width(), images.radiance().height(), record.wallSeconds,
+                samples / std::max(record.wallSeconds, 1e-9));
+    for (const auto& [name, value] : images.counters) {
+        std::printf("%s: %.6g (%.4g per second)\n", name.c_str(), value, value / std::max(record.wallSeconds, 1e-9));
+    }
     printTimings(*mode);
     if (images.nonFiniteSamples) {
         log::warn(std::to_string(images.nonFiniteSamples) + " NaN/Inf samples were discarded");
@@ -137,6 +155,8 @@ void addRenderCommand(CLI::App& app, Action& action) {
     cmd->add_option("--device", o->device, "Vulkan device: index or name substring (default: a GPU, else lavapipe)");
     cmd->add_flag("--validation", o->validation, "enable Vulkan validation layers; errors fail the run");
     cmd->add_option("--set", o->assignments, "mode parameter key=value (repeatable)");
+    cmd->add_option("--checkpoint", o->checkpoints, "also write FILE.<N>.exr after N iterations (repeatable)")
+        ->check(CLI::Range(1u, 1u << 30));
     cmd->callback([o, &action] { action = [o] { return runRender(*o); }; });
 }
 

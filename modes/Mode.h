@@ -33,6 +33,7 @@ struct ImageSet {
     std::vector<std::pair<std::string, Image>> layers;
     std::uint64_t nonFiniteSamples = 0; // samples discarded as NaN/Inf (never averaged in)
     std::uint32_t iterations = 0;
+    std::vector<std::pair<std::string, double>> counters; // mode statistics, e.g. {"rays", 1.2e9}
 
     const Image& radiance() const { return layers.at(0).second; }
 };

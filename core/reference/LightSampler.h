@@ -1,6 +1,7 @@
 // Next-event estimation for the CPU reference: emissive triangles (chosen in proportion to their
-// power, then a uniform point by area), the environment (by luminance), and point/spot lights
-// (delta lights, all evaluated at every vertex). Densities are in solid angle at the shading
+// power, then a direction uniform in the solid angle the triangle subtends, or a point uniform in
+// its area), the environment (by luminance), and point/spot lights (delta lights, all evaluated at
+// every vertex). Densities are in solid angle at the shading
 // point and include the probability of choosing the light, so MIS can compare them with BRDF
 // sampling.
 #pragma once
@@ -21,9 +22,11 @@ struct LightSample {
     float offsetScale = 0.0f;  // its triangle's coordinate magnitude
 };
 
+enum class EmitterSampling { SolidAngle, Area };
+
 class LightSampler {
 public:
-    LightSampler(const EmbreeScene& geometry, const EnvironmentLight& environment);
+    LightSampler(const EmbreeScene& geometry, const EnvironmentLight& environment, EmitterSampling emitterSampling);
 
     bool hasAreaLights() const { return !mTriangles.empty(); }
     // Samples an emissive triangle or the environment as seen from p.
@@ -35,6 +38,10 @@ public:
     float pdfEnvironment(const glm::vec3& direction) const;
 
 private:
+    // Solid angle of the triangle from p when it is sampled by solid angle there, else 0 (area
+    // sampling: tiny or huge spherical triangles are numerically unreliable).
+    float samplingSolidAngle(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) const;
+
     struct EmitterTriangle {
         std::uint32_t mesh;
         std::uint32_t tri;
@@ -46,6 +53,7 @@ private:
     std::vector<std::int64_t> mFirstTriangleOfMesh; // -1 for non-emissive meshes
     Distribution1D mTriangleDistribution;
     float mAreaProbability = 0.0f; // of choosing the area lights over the environment
+    EmitterSampling mEmitterSampling;
 };
 
 } // namespace bl

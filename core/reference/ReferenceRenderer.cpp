@@ -31,7 +31,7 @@ ReferenceRenderer::ReferenceRenderer(const Scene& scene, double time, const Refe
         mTextures.push_back(linearTexture(t));
     }
     mGeometry = std::make_unique<EmbreeScene>(scene, time);
-    mLights = std::make_unique<LightSampler>(*mGeometry, mEnvironment);
+    mLights = std::make_unique<LightSampler>(*mGeometry, mEnvironment, settings.emitterSampling);
     mTracer = std::make_unique<PathTracer>(*mGeometry, *mLights, mEnvironment, mTextures,
                                            makeGpuCamera(scene.camera, time, 1.0f), settings.path);
     const std::size_t n = static_cast<std::size_t>(mWidth) * mHeight;

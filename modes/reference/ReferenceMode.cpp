@@ -12,6 +12,8 @@ std::vector<ParamSpec> ReferenceMode::parameters() {
         {kRrDepth, std::int64_t{5}, "segments", "path length after which Russian roulette may end a path", 1, 100000, {}},
         {kThreads, std::int64_t{0}, "threads", "CPU worker threads (0: all hardware threads)", 0, 4096, {}},
         {kEnvSampling, std::string("luminance"), "", "environment-map light sampling", 0, 0, {"luminance", "uniform"}},
+        {kEmitterSampling, std::string("solid_angle"), "",
+         "emissive triangles: uniform in solid angle (Arvo 1995) or in area", 0, 0, {"solid_angle", "area"}},
     };
 }
 
@@ -26,6 +28,8 @@ ReferenceSettings ReferenceMode::rendererSettings() const {
     s.path.rrDepth = static_cast<int>(mSettings.getInt(kRrDepth));
     s.threads = static_cast<int>(mSettings.getInt(kThreads));
     s.environmentImportance = mSettings.getString(kEnvSampling) == "luminance";
+    s.emitterSampling =
+        mSettings.getString(kEmitterSampling) == "area" ? EmitterSampling::Area : EmitterSampling::SolidAngle;
     return s;
 }
 
@@ -36,7 +40,8 @@ std::vector<PlannedPass> ReferenceMode::plan(const Scene& scene) const {
     passes.push_back({"trace", true, "1 path per pixel per iteration, at most " +
                                          std::to_string(mSettings.getInt(kMaxSegments)) + " segments"});
     passes.push_back({"emitter sampling", f.emissiveTriangles > 0,
-                      f.emissiveTriangles ? std::to_string(f.emissiveTriangles) + " emissive triangles, by power"
+                      f.emissiveTriangles ? std::to_string(f.emissiveTriangles) + " emissive triangles, chosen by power, sampled by " +
+                                                                mSettings.getString(kEmitterSampling)
                                           : "no emissive triangles"});
     passes.push_back({"environment sampling", f.environment,
                       f.environment ? (f.environmentMap ? "by " + mSettings.getString(kEnvSampling) : "constant: uniform")
@@ -88,6 +93,7 @@ ImageSet ReferenceMode::resolve() {
         out.layers.emplace_back(kPathLayerNames[l], mRenderer->layer(l));
     }
     out.layers.emplace_back("variance", mRenderer->varianceOfMean());
+    out.counters.emplace_back("rays", static_cast<double>(mRenderer->rays()));
     return out;
 }
 

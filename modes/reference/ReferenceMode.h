@@ -10,6 +10,7 @@
 //   rr_depth      5          segments before Russian roulette
 //   threads       0          worker threads (0: all hardware threads)
 //   env_sampling  luminance  "luminance" or "uniform"
+//   emitter_sampling solid_angle  "solid_angle" (Arvo's spherical triangles) or "area"
 #pragma once
 
 #include "modes/Mode.h"
@@ -27,6 +28,7 @@ public:
     static constexpr const char* kRrDepth = "rr_depth";
     static constexpr const char* kThreads = "threads";
     static constexpr const char* kEnvSampling = "env_sampling";
+    static constexpr const char* kEmitterSampling = "emitter_sampling";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);

@@ -61,8 +61,9 @@ BL_INLINE uint blSobolSecond(uint i) {
     return r;
 }
 
-// Enough for the pixel position and the first two path vertices of a path tracer (5 calls each).
-BL_CONST uint kQuasiRandomCalls = 11u;
+// The pixel position and the first path vertex of a path tracer (5 calls): deeper calls gained
+// 2% in relMSE for 5% more time on McGuire's Cornell box, not worth it.
+BL_CONST uint kQuasiRandomCalls = 6u;
 
 struct RandomStream {
     uint key;       // hash of (seed, pixel, sample half)

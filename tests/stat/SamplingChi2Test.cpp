@@ -3,6 +3,7 @@
 // A sampler and pdf that disagree bias every MIS estimate; this catches it.
 #include "image/ImageIO.h"
 #include "reference/EnvironmentLight.h"
+#include "reference/SphericalTriangle.h"
 #include "stat/ChiSquare.h"
 #include "support/TestFiles.h"
 
@@ -140,4 +141,31 @@ TEST(ChiSquare, DetectsAWrongDensity) {
     EXPECT_LT(r.pValue, 1e-6) << r.describe();
     EXPECT_NEAR(regularizedGammaQ(1.0, 2.0), std::exp(-2.0), 1e-12);
     EXPECT_NEAR(regularizedGammaQ(5.0, 3.0), 0.8152632445237722, 1e-10);
+}
+
+TEST(SphericalTriangleChi2, UniformInSolidAngle) {
+    // A large, close triangle seen obliquely: area sampling would be far from uniform here.
+    const glm::vec3 p(0.1f, -0.2f, 0.05f);
+    const glm::vec3 a(-0.5f, -0.4f, 0.3f), b(0.9f, -0.3f, 0.5f), c(0.1f, 0.8f, 0.2f);
+    const float omega = triangleSolidAngle(p, a, b, c);
+    ASSERT_GT(omega, 0.5f);
+    auto inside = [&](glm::vec3 d) {
+        // Moeller-Trumbore: does the ray p + t d (t > 0) cross the triangle?
+        glm::vec3 e1 = b - a, e2 = c - a, h = glm::cross(d, e2);
+        float det = glm::dot(e1, h);
+        if (std::abs(det) < 1e-12f) return false;
+        glm::vec3 s = p - a;
+        float u = glm::dot(s, h) / det;
+        glm::vec3 q = glm::cross(s, e1);
+        float v = glm::dot(d, q) / det;
+        float t = glm::dot(e2, q) / det;
+        return u >= 0.0f && v >= 0.0f && u + v <= 1.0f && t > 0.0f;
+    };
+    ChiSquareResult r = testSampler(
+        [&](glm::vec3 u) {
+            glm::vec3 d;
+            return sampleSphericalTriangle(p, a, b, c, glm::vec2(u.x, u.y), d) ? d : glm::vec3(0.0f);
+        },
+        [&](glm::vec3 d) { return inside(d) ? 1.0 / omega : 0.0; }, 31);
+    EXPECT_GT(r.pValue, kSignificance) << r.describe();
 }
