@@ -47,6 +47,9 @@ void addModesCommand(CLI::App& app, Action& action) {
                     if (p.defaultValue.index() == 1 || p.defaultValue.index() == 2) {
                         std::cout << " in [" << formatNumber(p.min) << ", " << formatNumber(p.max) << "]";
                     }
+                    for (std::size_t i = 0; i < p.choices.size(); ++i) {
+                        std::cout << (i ? ", " : ": ") << p.choices[i];
+                    }
                     std::cout << ")  " << p.help << "\n";
                 }
             }

@@ -81,8 +81,18 @@ void ReferenceRenderer::renderPass(std::uint32_t sampleIndex, std::uint32_t seed
     mRays += rays;
     if (bad > 0) {
         mNonFinite += bad;
+        std::string first;
+        for (const BadSample& b : badSamples()) {
+            if (b.sample == sampleIndex) {
+                first = "; the first: pixel " + std::to_string(b.x) + " " + std::to_string(b.y) + " sample " +
+                        std::to_string(b.sample) + ", replay with `bundlelab replay SCENE --pixel " + std::to_string(b.x) +
+                        " " + std::to_string(b.y) + " --sample " + std::to_string(b.sample) + " --seed " +
+                        std::to_string(seed) + "`";
+                break;
+            }
+        }
         log::warn("reference: " + std::to_string(bad.load()) + " NaN/Inf samples in pass " + std::to_string(sampleIndex) +
-                  " (not averaged in; replay with `bundlelab replay`)");
+                  " (not averaged in)" + first);
     }
     ++mSamples;
 }

@@ -24,7 +24,7 @@ struct ReferenceSettings {
     PathTracerSettings path;
     int threads = 0;                   // 0: all hardware threads
     bool environmentImportance = true; // sample the environment by luminance (else uniformly)
-    EmitterSampling emitterSampling = EmitterSampling::SolidAngle;
+    EmitterSampling emitterSampling = EmitterSampling::Area;
 };
 
 class ReferenceRenderer {

@@ -12,8 +12,10 @@ std::vector<ParamSpec> ReferenceMode::parameters() {
         {kRrDepth, std::int64_t{5}, "segments", "path length after which Russian roulette may end a path", 1, 100000, {}},
         {kThreads, std::int64_t{0}, "threads", "CPU worker threads (0: all hardware threads)", 0, 4096, {}},
         {kEnvSampling, std::string("luminance"), "", "environment-map light sampling", 0, 0, {"luminance", "uniform"}},
-        {kEmitterSampling, std::string("solid_angle"), "",
-         "emissive triangles: uniform in solid angle (Arvo 1995) or in area", 0, 0, {"solid_angle", "area"}},
+        {kEmitterSampling, std::string("area"), "",
+         "emissive triangles: uniform in area, or in solid angle (Arvo 1995: 4% less relMSE, 30% more time on the "
+         "Cornell box)",
+         0, 0, {"area", "solid_angle"}},
     };
 }
 

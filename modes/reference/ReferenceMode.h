@@ -10,7 +10,7 @@
 //   rr_depth      5          segments before Russian roulette
 //   threads       0          worker threads (0: all hardware threads)
 //   env_sampling  luminance  "luminance" or "uniform"
-//   emitter_sampling solid_angle  "solid_angle" (Arvo's spherical triangles) or "area"
+//   emitter_sampling area    "area" or "solid_angle" (Arvo's spherical triangles)
 #pragma once
 
 #include "modes/Mode.h"

@@ -16,11 +16,13 @@ TEST(ReferenceAnalytic, WhiteFurnaceByPathLength) {
     s.camera.resolution = {16, 16};
     // radiance = sum over k < N of 0.5^k: 1, 1.5, 1.75 for N = 1, 2, 3; 2 without a limit.
     for (auto [segments, expected] : {std::pair{1, 1.0}, {2, 1.5}, {3, 1.75}, {64, 2.0}}) {
-        SCOPED_TRACE(segments);
-        ImageSet out = renderReference(s, 64, {"max_segments=" + std::to_string(segments)});
-        glm::dvec3 mean = out.radiance().mean();
-        for (int c = 0; c < 3; ++c) {
-            EXPECT_NEAR(mean[c], expected, 0.005 * expected);
+        for (const char* sampling : {"emitter_sampling=area", "emitter_sampling=solid_angle"}) {
+            SCOPED_TRACE(std::to_string(segments) + " " + sampling);
+            ImageSet out = renderReference(s, 64, {"max_segments=" + std::to_string(segments), sampling});
+            glm::dvec3 mean = out.radiance().mean();
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_NEAR(mean[c], expected, 0.005 * expected);
+            }
         }
     }
     // The layers split the same radiance by path length: 1, 0.5, 0.25, 0.125, and 0.125 beyond.
@@ -41,8 +43,10 @@ TEST(ReferenceAnalytic, RectangleLightOverFloor) {
     s.camera.pose = {{0.0f, 0.6f, 0.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}};
     s.camera.fovDegrees = 0.5f;
     s.camera.resolution = {8, 8};
-    ImageSet out = renderReference(s, 256);
-    EXPECT_NEAR(out.radiance().mean().x, 0.367388, 0.005 * 0.367388);
+    for (const char* sampling : {"emitter_sampling=area", "emitter_sampling=solid_angle"}) {
+        ImageSet out = renderReference(s, 256, {sampling});
+        EXPECT_NEAR(out.radiance().mean().x, 0.367388, 0.005 * 0.367388) << sampling;
+    }
 }
 
 TEST(ReferenceAnalytic, PointLightOverPlane) {
@@ -114,4 +118,29 @@ TEST(ReferenceAnalytic, NonFiniteSamplesAreCountedNotAveraged) {
     PathSample again = static_cast<ReferenceMode&>(*mode).replay(2, 3, 0, 0, log);
     EXPECT_FALSE(again.finite());
     EXPECT_FALSE(log.empty());
+}
+
+TEST(ReferenceAnalytic, EnvironmentLightsALambertianSquare) {
+    // A square of albedo 0.5 facing up, alone under an environment of radiance 2 above the horizon
+    // and 0 below: it reflects 0.5 * 2 = 1 (the lower half is hidden behind it anyway).
+    Scene s;
+    Material m;
+    m.albedo = glm::vec3(0.5f);
+    s.materials.push_back(m);
+    s.meshes.push_back(bl::test::makeSquare(2.0f, 0));
+    s.camera.pose = {{0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}};
+    s.camera.fovDegrees = 5.0f;
+    s.camera.resolution = {8, 8};
+    s.environment.present = true;
+    s.environment.map = Image(64, 32);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 64; ++x) s.environment.map.at(x, y) = glm::vec3(2.0f);
+    // Bilinear filtering blurs the horizon over half a texel (2.8 degrees): ~0.1% of the irradiance.
+    for (const char* sampling : {"env_sampling=luminance", "env_sampling=uniform"}) {
+        Image img = renderReference(s, 256, {sampling, "max_segments=2"}).radiance();
+        EXPECT_NEAR(img.mean().x, 1.0, 0.005) << sampling;
+    }
+    s.environment.map = Image();
+    s.environment.radiance = glm::vec3(2.0f); // constant: the same answer
+    EXPECT_NEAR(renderReference(s, 256).radiance().mean().x, 1.0, 0.005);
 }
