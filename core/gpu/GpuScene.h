@@ -73,7 +73,4 @@ private:
     vk::Sampler mEnvironmentSampler;
 };
 
-shader::GpuLight toGpuLight(const Light& light);
-shader::GpuMaterial toGpuMaterial(const Material& material);
-
 } // namespace bl::gpu

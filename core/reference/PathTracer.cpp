@@ -1,6 +1,7 @@
 #include "reference/PathTracer.h"
 
 #include "image/BilinearLookup.h"
+#include "scene/ShaderConversions.h"
 
 #include <cmath>
 #include <cstdio>
@@ -24,18 +25,6 @@ std::string describe(const glm::vec3& v) {
     return buf;
 }
 
-shader::GpuLight toShaderLight(const Light& l) {
-    shader::GpuLight g{};
-    g.position = l.position;
-    g.intensity = l.intensity;
-    g.direction = l.direction;
-    g.type = l.type == Light::Type::Spot ? shader::kLightSpot : shader::kLightPoint;
-    g.cosOuter = std::cos(glm::radians(l.coneAngleDegrees));
-    g.cosInner = std::max(std::cos(glm::radians(std::max(l.coneAngleDegrees - l.falloffDegrees, 0.0f))),
-                          g.cosOuter + 1e-7f);
-    return g;
-}
-
 } // namespace
 
 glm::vec3 PathSample::total() const {
@@ -56,16 +45,10 @@ PathTracer::PathTracer(const EmbreeScene& geometry, const LightSampler& lights, 
     : mGeometry(&geometry), mLights(&lights), mEnvironment(&environment), mTextures(&linearTextures),
       mCamera(camera), mSettings(settings) {
     for (const Material& m : geometry.scene().materials) {
-        shader::GpuMaterial g{};
-        g.albedo = m.albedo;
-        g.specular = m.specular;
-        g.exponentU = m.exponentU;
-        g.exponentV = m.exponentV;
-        g.albedoTexture = m.albedoTexture >= 0 ? static_cast<std::uint32_t>(m.albedoTexture) : shader::kNoTexture;
-        mMaterials.push_back(g);
+        mMaterials.push_back(toGpuMaterial(m));
     }
     for (const Light& l : geometry.scene().lights) {
-        mDeltaLights.push_back(toShaderLight(l));
+        mDeltaLights.push_back(toGpuLight(l));
     }
 }
 
