@@ -2,6 +2,8 @@
 #
 # Compiles each GLSL file to SPIR-V with glslangValidator, embedded as a C++ header
 # `<build>/shaders/spv/<dir>/<file>.spv.h` that defines `static const uint32_t kSpv_<dir>_<file>_<stage>[]`.
+# SPIR-V 1.5 (--target-env vulkan1.2): Vulkan 1.3 devices take it, and it keeps gl_HelperInvocation
+# the plain built-in (SPIR-V 1.6 turns it into OpIsHelperInvocationEXT, which lavapipe 22.3 lacks).
 # Dependencies on included headers come from glslangValidator's --depfile, so editing
 # shaders/shared/*.h recompiles exactly the shaders that include it. SPIR-V never leaves the build tree.
 function(bl_add_shaders)
@@ -25,7 +27,7 @@ function(bl_add_shaders)
         add_custom_command(
             OUTPUT "${out}"
             COMMAND ${CMAKE_COMMAND} -E make_directory "${out_dir}"
-            COMMAND ${BL_GLSLANG} -S ${stage} --target-env vulkan1.3 -g0 --quiet
+            COMMAND ${BL_GLSLANG} -S ${stage} --target-env vulkan1.2 -g0 --quiet
                     -I${PROJECT_SOURCE_DIR}/shaders --vn kSpv_${var}
                     --depfile "${out}.d" -o "${out}" "${abs}"
             DEPENDS "${abs}"

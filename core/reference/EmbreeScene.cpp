@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace bl {
 
@@ -30,7 +31,7 @@ EmbreeScene::EmbreeScene(const Scene& scene, double time) : mScene(&scene) {
     rtcSetDeviceErrorFunction(mDevice, onEmbreeError, nullptr);
     mRtcScene = rtcNewScene(mDevice);
     rtcSetSceneBuildQuality(mRtcScene, RTC_BUILD_QUALITY_HIGH);
-    rtcSetSceneFlags(mRtcScene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneFlags(mRtcScene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     for (std::uint32_t i = 0; i < scene.meshes.size(); ++i) {
         const Mesh& m = scene.meshes[i];
         glm::mat4 model = m.animation.at(time);
@@ -132,6 +133,60 @@ bool EmbreeScene::intersect(const glm::vec3& origin, const glm::vec3& direction,
     hit.uv = mesh.uvs.empty() ? glm::vec2(0.0f) : w * mesh.uvs[tri.x] + u * mesh.uvs[tri.y] + v * mesh.uvs[tri.z];
     hit.offsetScale = std::max({maxAbs(a), maxAbs(b), maxAbs(c)});
     return true;
+}
+
+namespace {
+struct AllHitsContext {
+    RTCIntersectContext base; // first: Embree hands this pointer back to the filter
+    std::vector<EmbreeScene::RayHit>* hits;
+};
+
+void collectHit(const RTCFilterFunctionNArguments* args) {
+    auto* context = reinterpret_cast<AllHitsContext*>(args->context);
+    RTCRay ray = rtcGetRayFromRayN(args->ray, args->N, 0);
+    RTCHit hit = rtcGetHitFromHitN(args->hit, args->N, 0);
+    context->hits->push_back({ray.tfar, hit.geomID, hit.primID, glm::vec3(0.0f)});
+    args->valid[0] = 0; // reject, so the traversal goes on to every other crossing
+}
+} // namespace
+
+std::vector<EmbreeScene::RayHit> EmbreeScene::allHits(const glm::vec3& origin, const glm::vec3& direction,
+                                                      float tMax) const {
+    std::vector<RayHit> hits;
+    AllHitsContext context;
+    rtcInitIntersectContext(&context.base);
+    context.base.filter = collectHit;
+    context.hits = &hits;
+    RTCRayHit rh;
+    rh.ray.org_x = origin.x;
+    rh.ray.org_y = origin.y;
+    rh.ray.org_z = origin.z;
+    rh.ray.dir_x = direction.x;
+    rh.ray.dir_y = direction.y;
+    rh.ray.dir_z = direction.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = tMax;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = ~0u;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(mRtcScene, &context.base, &rh);
+    // Spatial splits can report a triangle once per leaf that holds it.
+    std::sort(hits.begin(), hits.end(), [](const RayHit& a, const RayHit& b) {
+        return std::tie(a.mesh, a.triangle, a.t) < std::tie(b.mesh, b.triangle, b.t);
+    });
+    hits.erase(std::unique(hits.begin(), hits.end(),
+                           [](const RayHit& a, const RayHit& b) { return a.mesh == b.mesh && a.triangle == b.triangle; }),
+               hits.end());
+    for (RayHit& h : hits) {
+        glm::vec3 a, b, c;
+        triangle(h.mesh, h.triangle, a, b, c);
+        h.geometricNormal = glm::normalize(glm::cross(b - a, c - a));
+    }
+    std::sort(hits.begin(), hits.end(), [](const RayHit& a, const RayHit& b) { return a.t < b.t; });
+    return hits;
 }
 
 bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tMax) const {

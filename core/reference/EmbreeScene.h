@@ -28,6 +28,16 @@ public:
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
     bool intersect(const glm::vec3& origin, const glm::vec3& direction, float tMax, SurfaceHit& hit) const;
+    struct RayHit {
+        float t;
+        std::uint32_t mesh;
+        std::uint32_t triangle;
+        glm::vec3 geometricNormal; // unit, front side
+    };
+    // Every surface crossing along origin + t direction, 0 <= t < tMax, each triangle once,
+    // sorted by t (coplanar duplicates are kept: they are distinct triangles).
+    std::vector<RayHit> allHits(const glm::vec3& origin, const glm::vec3& direction, float tMax) const;
+
     // True if anything lies on the open segment origin + t direction, 0 < t < tMax.
     bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tMax) const;
 

@@ -7,7 +7,7 @@
 #pragma once
 
 #include "reference/EmbreeScene.h"
-#include "reference/EnvironmentLight.h"
+#include "sampling/EnvironmentLight.h"
 #include "sampling/Distribution.h"
 
 namespace bl {

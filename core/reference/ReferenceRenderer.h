@@ -5,7 +5,7 @@
 #pragma once
 
 #include "reference/EmbreeScene.h"
-#include "reference/EnvironmentLight.h"
+#include "sampling/EnvironmentLight.h"
 #include "reference/LightSampler.h"
 #include "reference/PathTracer.h"
 

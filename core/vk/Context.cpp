@@ -246,6 +246,8 @@ Context::Context(const ContextOptions& options) {
         use.features.fragmentStoresAndAtomics = VK_TRUE;
         use.features.vertexPipelineStoresAndAtomics = have.features.vertexPipelineStoresAndAtomics;
         use.features.shaderInt64 = have.features.shaderInt64;
+        use.features.geometryShader = have.features.geometryShader; // gl_PrimitiveID in fragments
+        mGeometryShader = have.features.geometryShader;
         use.features.shaderStorageImageWriteWithoutFormat = have.features.shaderStorageImageWriteWithoutFormat;
 
         const float priority = 1.0f;

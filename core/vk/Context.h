@@ -45,6 +45,7 @@ public:
     const DeviceInfo& info() const { return mInfo; }
     const VkPhysicalDeviceLimits& limits() const { return mLimits; }
     bool bufferDeviceAddress() const { return mBufferDeviceAddress; }
+    bool geometryShader() const { return mGeometryShader; }
 
     // Records commands, submits them and waits for completion. Everything a command buffer uses
     // must stay alive until this returns, which is the simple lifetime rule of this codebase.
@@ -85,6 +86,7 @@ private:
     DeviceInfo mInfo;
     VkPhysicalDeviceLimits mLimits{};
     bool mBufferDeviceAddress = false;
+    bool mGeometryShader = false;
 
     mutable std::mutex mMessageMutex;
     std::vector<std::string> mErrors;

@@ -2,7 +2,7 @@
 // (Lambert, normalized Phong at several exponents, Ashikhmin-Shirley) and the environment map.
 // A sampler and pdf that disagree bias every MIS estimate; this catches it.
 #include "image/ImageIO.h"
-#include "reference/EnvironmentLight.h"
+#include "sampling/EnvironmentLight.h"
 #include "reference/SphericalTriangle.h"
 #include "stat/ChiSquare.h"
 #include "support/TestFiles.h"

@@ -1,4 +1,4 @@
-#include "reference/EnvironmentLight.h"
+#include "sampling/EnvironmentLight.h"
 
 #include "image/BilinearLookup.h"
 

@@ -1,4 +1,4 @@
-// Light from infinity for the CPU renderer: radiance lookup (bilinear between texel centres, wrap
+// Light from infinity on the CPU (the reference, and bundle direction sampling): radiance lookup (bilinear between texel centres, wrap
 // in u, clamp in v, exactly like the GPU sampler) and importance sampling by luminance.
 #pragma once
 

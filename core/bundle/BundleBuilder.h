@@ -1,0 +1,107 @@
+// Perfect global ray-bundles: every fragment of every triangle along a direction, appended to
+// per-pixel linked lists (a head buffer and a node pool filled by an atomic counter).
+//
+// Never loses a fragment: the build counts the nodes it needs; when they exceed the pool, the pool
+// grows and the bundle is rebuilt; when they exceed the memory cap, the frame is split into tiles
+// built (and consumed) one after another, a tile that still overflows splits again. Every
+// overflow is reported in the stats.
+#pragma once
+
+#include "gpu/GpuScene.h"
+#include "vk/Buffer.h"
+#include "vk/Descriptors.h"
+#include "vk/GpuTimer.h"
+#include "vk/Pipeline.h"
+
+#include <functional>
+#include <shared/BundleTypes.h>
+
+namespace bl {
+
+enum class BundlePayload { None, Shading, Surface };
+
+struct BundleBuilderOptions {
+    BundlePayload payload = BundlePayload::None;
+    std::uint64_t initialNodes = 0;          // pool size at start (0: 4 per pixel of the first frame)
+    std::uint64_t memoryCapBytes = 1ull << 30; // pool (+ payload) never exceeds this
+    bool subgroupAllocation = true;          // used when the device supports it
+    bool listStatistics = false;             // longest list, non-empty pixels (one extra pass)
+};
+
+// A built bundle (or one tile of it), valid during the consumer callback.
+struct BuiltBundle {
+    shader::BundleFrame frame;
+    VkDeviceAddress heads = 0;
+    VkDeviceAddress nodes = 0;
+    VkDeviceAddress payload = 0;
+    std::uint32_t fragments = 0;
+};
+
+struct BundleStats {
+    std::uint64_t fragments = 0;
+    std::uint32_t nonEmptyPixels = 0; // with listStatistics
+    std::uint32_t longestList = 0;    // with listStatistics
+    std::uint32_t rebuilds = 0;       // builds repeated after the pool grew
+    std::uint32_t tiles = 1;          // parts the frame was split into
+    double buildMs = 0.0;             // GPU time of the final builds
+    double meanListLength() const { return nonEmptyPixels ? double(fragments) / nonEmptyPixels : 0.0; }
+};
+
+class BundleBuilder {
+public:
+    BundleBuilder(const vk::Context& ctx, const gpu::GpuScene& scene, const BundleBuilderOptions& options = {});
+
+    // Builds the bundle for `frame` (scene at `time`) and hands each completed part to `consume`
+    // (the whole frame, or its tiles in turn). Throws bl::Error if one pixel alone needs more than
+    // the memory cap.
+    BundleStats build(const shader::BundleFrame& frame, double time,
+                      const std::function<void(const BuiltBundle&)>& consume);
+
+    // The benchmark floor: rasterize the same triangles with a fragment shader that only counts.
+    // Returns the fragment count; GPU milliseconds in *ms.
+    std::uint64_t countFragments(const shader::BundleFrame& frame, double time, double* ms);
+
+    // A host copy of a built bundle's lists (tests, debugging): heads per pixel, then the nodes.
+    void readLists(const BuiltBundle& bundle, std::vector<std::uint32_t>& heads,
+                   std::vector<shader::BundleNode>& nodes) const;
+
+    std::uint64_t capacity() const { return mCapacity; }
+    bool usesSubgroups() const { return mSubgroups; }
+    bool exactDepths() const { return mExactDepth; }
+    static std::uint32_t payloadBytes(BundlePayload payload);
+
+private:
+    struct Attempt {
+        std::uint32_t requested;
+        double ms;
+    };
+    Attempt buildOnce(const shader::BundleFrame& frame, double time, VkPipeline pipeline);
+    void ensureCapacity(std::uint64_t nodes, std::uint32_t pixels);
+    void readStatistics(const shader::BundleFrame& frame, BundleStats& stats);
+    void buildTiles(const shader::BundleFrame& frame, double time, std::uint32_t depth, BundleStats& stats,
+                    const std::function<void(const BuiltBundle&)>& consume);
+
+    const vk::Context* mContext;
+    const gpu::GpuScene* mScene;
+    BundleBuilderOptions mOptions;
+    bool mSubgroups = false;
+    bool mExactDepth = false;
+    std::uint64_t mCapacity = 0;
+    std::uint64_t mCapNodes = 0;
+    vk::Buffer mHeads;
+    vk::Buffer mNodes;
+    vk::Buffer mPayload;
+    vk::Buffer mCounters;
+    vk::Buffer mFrame;
+    vk::Buffer mStats;
+    vk::DescriptorSetLayout mSetLayout;
+    vk::DescriptorPool mPool;
+    VkDescriptorSet mSet = VK_NULL_HANDLE;
+    vk::PipelineLayout mPipelineLayout;
+    vk::Pipeline mBuildPipeline;
+    vk::Pipeline mCountPipeline;
+    vk::Pipeline mStatsPipeline;
+    vk::GpuTimer mTimer;
+};
+
+} // namespace bl

@@ -1,0 +1,96 @@
+#include "bundle/BundleFrame.h"
+
+#include "base/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <shared/Frame.h>
+
+namespace bl {
+
+void bundleAxes(const glm::vec3& direction, float rotation, glm::vec3& axisX, glm::vec3& axisY) {
+    glm::vec3 t, b;
+    shader::blOrthonormalBasis(direction, t, b);
+    const float c = std::cos(rotation), s = std::sin(rotation);
+    axisX = glm::normalize(c * t + s * b);
+    // (axisX, axisY, direction) is right-handed with y pointing down the image, so a triangle
+    // whose front faces -direction is front-facing to the rasterizer (counter-clockwise).
+    axisY = glm::normalize(glm::cross(direction, axisX));
+}
+
+namespace {
+shader::BundleFrame makeFrame(const glm::vec3& direction, const glm::vec3& axisX, const glm::vec3& axisY,
+                              glm::vec2 lo, float pixelSize, std::uint32_t width, std::uint32_t height,
+                              const glm::vec3& sceneCenter, float sceneRadius) {
+    if (!(pixelSize > 0.0f) || width == 0 || height == 0) {
+        throw Error("bundle frame: empty extent");
+    }
+    shader::BundleFrame f{};
+    f.direction = direction;
+    f.axisX = axisX;
+    f.axisY = axisY;
+    f.pixelSize = pixelSize;
+    f.width = width;
+    f.height = height;
+    // origin: the frame's corner, on the plane through the sphere centre (depth measured from it).
+    const glm::vec3 c = sceneCenter;
+    f.origin = c + (lo.x - glm::dot(c, axisX)) * axisX + (lo.y - glm::dot(c, axisY)) * axisY;
+    // Depths of the scene lie in [-radius, radius] about the centre; a margin keeps the clip
+    // planes off any geometry.
+    f.depthNear = -1.01f * sceneRadius;
+    f.depthFar = 1.01f * sceneRadius;
+    f.depthEpsilon = kBundleDepthEpsilon * sceneRadius;
+    return f;
+}
+} // namespace
+
+shader::BundleFrame bundleFrameForSphere(const glm::vec3& direction, float rotation, const glm::vec3& center,
+                                         float radius, std::uint32_t resolution) {
+    glm::vec3 ax, ay;
+    bundleAxes(direction, rotation, ax, ay);
+    const float r = std::max(radius, 1e-30f);
+    glm::vec2 lo(glm::dot(center, ax) - r, glm::dot(center, ay) - r);
+    return makeFrame(direction, ax, ay, lo, 2.0f * r / float(resolution), resolution, resolution, center, r);
+}
+
+shader::BundleFrame bundleFrameForPoints(const glm::vec3& direction, float rotation,
+                                         const std::vector<glm::vec3>& points, const glm::vec3& sceneCenter,
+                                         float sceneRadius, std::uint32_t resolution) {
+    if (points.empty()) {
+        return bundleFrameForSphere(direction, rotation, sceneCenter, sceneRadius, resolution);
+    }
+    glm::vec3 ax, ay;
+    bundleAxes(direction, rotation, ax, ay);
+    glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+    for (const glm::vec3& p : points) {
+        glm::vec2 q(glm::dot(p, ax), glm::dot(p, ay));
+        lo = glm::min(lo, q);
+        hi = glm::max(hi, q);
+    }
+    // Half a pixel of margin on every side, so points on the boundary fall inside.
+    const float extent = std::max(std::max(hi.x - lo.x, hi.y - lo.y), 1e-6f * sceneRadius);
+    const float pixel = extent / float(resolution - 1);
+    lo -= 0.5f * pixel;
+    const auto w = static_cast<std::uint32_t>(std::ceil((hi.x - lo.x) / pixel + 0.5f));
+    const auto h = static_cast<std::uint32_t>(std::ceil((hi.y - lo.y) / pixel + 0.5f));
+    return makeFrame(direction, ax, ay, lo, pixel, std::clamp(w, 1u, resolution), std::clamp(h, 1u, resolution),
+                     sceneCenter, sceneRadius);
+}
+
+shader::BundleFrame bundleTile(const shader::BundleFrame& frame, std::uint32_t x0, std::uint32_t y0,
+                               std::uint32_t width, std::uint32_t height) {
+    shader::BundleFrame t = frame;
+    t.origin = frame.origin + float(x0) * frame.pixelSize * frame.axisX + float(y0) * frame.pixelSize * frame.axisY;
+    t.width = width;
+    t.height = height;
+    return t;
+}
+
+glm::vec3 bundleProject(const shader::BundleFrame& frame, const glm::vec3& p) {
+    glm::vec3 rel = p - frame.origin;
+    return {glm::dot(rel, frame.axisX) / frame.pixelSize, glm::dot(rel, frame.axisY) / frame.pixelSize,
+            glm::dot(rel, frame.direction)};
+}
+
+} // namespace bl

@@ -1,0 +1,38 @@
+// Orthographic frames for bundles: along a direction, covering a bounding sphere or a set of
+// points, with an optional rotation about the direction (decorrelates aliasing across bundles).
+#pragma once
+
+#include "base/Bounds.h"
+
+#include <glm/glm.hpp>
+#include <shared/BundleTypes.h>
+#include <vector>
+
+namespace bl {
+
+// Depth tolerance of a bundle in units of the scene's bounding radius: fragments this close to a
+// point's own depth along its ray count as the point itself. 1e-5 of the radius is ~80 float ulps
+// of any coordinate inside the sphere, and below any modelled feature.
+inline constexpr float kBundleDepthEpsilon = 1e-5f;
+
+// A right-handed basis for direction d: axisX, axisY = cross(d, axisX), d, rotated by `rotation`
+// radians about d.
+void bundleAxes(const glm::vec3& direction, float rotation, glm::vec3& axisX, glm::vec3& axisY);
+
+// resolution x resolution pixels covering the sphere (center, radius) seen along `direction`.
+shader::BundleFrame bundleFrameForSphere(const glm::vec3& direction, float rotation, const glm::vec3& center,
+                                         float radius, std::uint32_t resolution);
+
+// Pixels of the same size as `resolution` across the points' largest extent, covering just the
+// points' projections (the camera-visible points of [TO12s] B.1); depth range of the sphere.
+shader::BundleFrame bundleFrameForPoints(const glm::vec3& direction, float rotation, const std::vector<glm::vec3>& points,
+                                         const glm::vec3& sceneCenter, float sceneRadius, std::uint32_t resolution);
+
+// The sub-frame of pixels [x0, x0 + width) x [y0, y0 + height).
+shader::BundleFrame bundleTile(const shader::BundleFrame& frame, std::uint32_t x0, std::uint32_t y0,
+                               std::uint32_t width, std::uint32_t height);
+
+// Continuous pixel coordinates and depth of point p in the frame.
+glm::vec3 bundleProject(const shader::BundleFrame& frame, const glm::vec3& p);
+
+} // namespace bl

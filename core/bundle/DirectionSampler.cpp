@@ -1,0 +1,75 @@
+#include "bundle/DirectionSampler.h"
+
+#include "base/Error.h"
+#include "sampling/Halton.h"
+
+#include <cmath>
+#include <shared/Random.h>
+#include <shared/Sampling.h>
+
+namespace bl {
+
+namespace {
+constexpr float kUniformSpherePdf = 1.0f / (4.0f * shader::kPi);
+}
+
+DirectionSampler::DirectionSampler(DirectionSequence sequence, std::uint32_t seed, std::uint32_t strata,
+                                   const EnvironmentLight* environment, float offset)
+    : mSequence(sequence), mSeed(seed), mStrata(std::max(strata, 1u)), mEnvironment(environment) {
+    if (sequence == DirectionSequence::Importance) {
+        if (!environment || !environment->present()) {
+            throw Error("importance-sampled bundle directions need an environment");
+        }
+        if (!(offset >= 0.0f)) {
+            throw Error("importance offset must be >= 0");
+        }
+        // q = (L + L_o) / (E + 4 pi L_o) with E = integral of L and L_o = offset * E / (4 pi):
+        // a mixture of the luminance sampler (weight E / (E + 4 pi L_o)) and uniform directions.
+        mEnvironmentProbability = 1.0f / (1.0f + offset);
+    }
+}
+
+glm::vec2 DirectionSampler::unitSquare(std::uint32_t index) const {
+    switch (mSequence) {
+    case DirectionSequence::Random:
+        return {shader::blHashRandom(mSeed, 2 * index), shader::blHashRandom(mSeed, 2 * index + 1)};
+    case DirectionSequence::Stratified: {
+        const auto side = static_cast<std::uint32_t>(std::max(1.0, std::floor(std::sqrt(double(mStrata)))));
+        const std::uint32_t cell = index % (side * side);
+        const glm::vec2 jitter(shader::blHashRandom(mSeed, 2 * index), shader::blHashRandom(mSeed, 2 * index + 1));
+        return (glm::vec2(float(cell % side), float(cell / side)) + jitter) / float(side);
+    }
+    default: {
+        // Halton (2, 3) with a Cranley-Patterson rotation per seed (seed 0: the plain sequence).
+        glm::vec2 shift = mSeed ? glm::vec2(shader::blHashRandom(mSeed, 0x7f4a7c15u), shader::blHashRandom(mSeed, 0x1b873593u))
+                                : glm::vec2(0.0f);
+        glm::vec2 p(float(radicalInverse(2, index + 1)), float(radicalInverse(3, index + 1)));
+        p += shift;
+        return p - glm::floor(p);
+    }
+    }
+}
+
+BundleDirection DirectionSampler::sample(std::uint32_t index) const {
+    BundleDirection d;
+    glm::vec2 u = unitSquare(index);
+    d.rotation = shader::kTwoPi * shader::blHashRandom(mSeed ^ 0x9e3779b9u, index);
+    if (mSequence == DirectionSequence::Importance) {
+        // One extra number picks the mixture component; u stays stratified for each component.
+        float pick = shader::blHashRandom(mSeed ^ 0x85ebca6bu, index);
+        float pdfIgnored = 0.0f;
+        d.omega = pick < mEnvironmentProbability ? mEnvironment->sample(u, &pdfIgnored) : shader::blSampleUniformSphere(u);
+        return d;
+    }
+    d.omega = shader::blSampleUniformSphere(u);
+    return d;
+}
+
+float DirectionSampler::pdf(const glm::vec3& omega) const {
+    if (mSequence != DirectionSequence::Importance) {
+        return kUniformSpherePdf;
+    }
+    return mEnvironmentProbability * mEnvironment->pdf(omega) + (1.0f - mEnvironmentProbability) * kUniformSpherePdf;
+}
+
+} // namespace bl

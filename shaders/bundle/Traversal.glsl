@@ -1,0 +1,83 @@
+// Traversal of bundle lists ([TO12s] Program 1): the lists are unsorted, so queries walk the whole
+// list keeping the best candidate. Include after BundleBuffers.glsl.
+#ifndef BL_BUNDLE_TRAVERSAL_GLSL
+#define BL_BUNDLE_TRAVERSAL_GLSL
+#include "bundle/BundleBuffers.glsl"
+
+// Pixel of the frame whose ray passes nearest to p, and p's depth; false outside the frame.
+bool blBundlePixel(BundleFrame frame, vec3 p, out ivec2 pixel, out float depth) {
+    vec3 rel = p - frame.origin;
+    vec2 xy = vec2(dot(rel, frame.axisX), dot(rel, frame.axisY)) / frame.pixelSize;
+    depth = dot(rel, frame.direction);
+    pixel = ivec2(floor(xy));
+    return pixel.x >= 0 && pixel.y >= 0 && pixel.x < int(frame.width) && pixel.y < int(frame.height);
+}
+
+uint blBundleHead(BundleHeads heads, BundleFrame frame, ivec2 pixel) {
+    return heads.heads[uint(pixel.y) * frame.width + uint(pixel.x)] & kBundleIndexMask;
+}
+
+// True when a fragment faces the point it is seen from: a ray leaving a point along
+// dir * omega (dir = +1 or -1) meets the front of a triangle whose front faces -dir * omega.
+bool blBundleFacesBack(uint next, float dir) {
+    bool frontFacesMinusOmega = (next & kBundleFrontFaceBit) != 0u;
+    return dir > 0.0 ? frontFacesMinusOmega : !frontFacesMinusOmega;
+}
+
+// The nearest fragment beyond depth d along dir * omega (dir = +1 or -1), kBundleNil if none.
+// Fragments within `ownEpsilon` of d that turn their back on the query (the point's own surface,
+// sampled half a pixel away at its own slope) are skipped; fragments facing the point count from
+// frame.depthEpsilon on.
+uint blBundleNearest(BundleNodes nodes, uint head, float d, float dir, float ownEpsilon, BundleFrame frame) {
+    uint best = kBundleNil;
+    float bestDistance = 3.0e38;
+    for (uint i = head; i != kBundleNil;) {
+        BundleNode n = nodes.nodes[i];
+        float distance = dir * (n.depth - d);
+        float threshold = blBundleFacesBack(n.next, dir) ? frame.depthEpsilon : ownEpsilon;
+        if (distance > threshold && distance < bestDistance) {
+            best = i;
+            bestDistance = distance;
+        }
+        i = n.next & kBundleIndexMask;
+    }
+    return best;
+}
+
+// The next fragment in depth order after node `from` (by depth, ties broken by index), and the
+// previous one; kBundleNil at the ends.
+uint blBundleNext(BundleNodes nodes, uint head, uint from) {
+    float d = nodes.nodes[from].depth;
+    uint best = kBundleNil;
+    float bestDepth = 3.0e38;
+    for (uint i = head; i != kBundleNil;) {
+        BundleNode n = nodes.nodes[i];
+        bool after = n.depth > d || (n.depth == d && i > from);
+        bool better = n.depth < bestDepth || (n.depth == bestDepth && i < best);
+        if (after && better) {
+            best = i;
+            bestDepth = n.depth;
+        }
+        i = n.next & kBundleIndexMask;
+    }
+    return best;
+}
+
+uint blBundlePrevious(BundleNodes nodes, uint head, uint from) {
+    float d = nodes.nodes[from].depth;
+    uint best = kBundleNil;
+    float bestDepth = -3.0e38;
+    for (uint i = head; i != kBundleNil;) {
+        BundleNode n = nodes.nodes[i];
+        bool before = n.depth < d || (n.depth == d && i < from);
+        bool better = n.depth > bestDepth || (n.depth == bestDepth && (best == kBundleNil || i > best));
+        if (before && better) {
+            best = i;
+            bestDepth = n.depth;
+        }
+        i = n.next & kBundleIndexMask;
+    }
+    return best;
+}
+
+#endif

@@ -1,0 +1,95 @@
+// Bundle directions: uniform, stratified, Halton and environment-importance sequences against
+// their densities (chi-square), and p_r = q(d) + q(-d) (EQUATIONS.md section 1, [TO12] Eq. 2).
+#include "bundle/DirectionSampler.h"
+#include "image/ImageIO.h"
+#include "support/TestFiles.h"
+
+#include <gtest/gtest.h>
+#include <shared/Prelude.h>
+
+using namespace bl;
+
+namespace {
+
+// Equal-area bins in (cos theta, phi); for uniform sequences every bin expects the same count.
+std::vector<double> histogram(const DirectionSampler& s, int n, int thetaBins, int phiBins) {
+    std::vector<double> h(thetaBins * phiBins, 0.0);
+    for (int i = 0; i < n; ++i) {
+        glm::vec3 d = s.sample(i).omega;
+        float phi = std::atan2(d.y, d.x);
+        if (phi < 0) phi += shader::kTwoPi;
+        int t = std::min(int((1.0f - d.z) * 0.5f * thetaBins), thetaBins - 1);
+        int p = std::min(int(phi / shader::kTwoPi * phiBins), phiBins - 1);
+        h[t * phiBins + p] += 1.0;
+    }
+    return h;
+}
+
+double chiSquare(const std::vector<double>& observed, const std::vector<double>& expected) {
+    double c = 0.0;
+    for (std::size_t i = 0; i < observed.size(); ++i) c += (observed[i] - expected[i]) * (observed[i] - expected[i]) / expected[i];
+    return c;
+}
+
+} // namespace
+
+TEST(DirectionSampler, UniformSequencesCoverTheSphereEvenly) {
+    const int n = 32768, tb = 8, pb = 16;
+    std::vector<double> expected(tb * pb, double(n) / (tb * pb));
+    // Random: chi-square with 127 dof stays below its 0.999 quantile (~181).
+    EXPECT_LT(chiSquare(histogram(DirectionSampler(DirectionSequence::Random, 3), n, tb, pb), expected), 181.0);
+    // Halton and stratified are low-discrepancy: far more even than random.
+    EXPECT_LT(chiSquare(histogram(DirectionSampler(DirectionSequence::Halton, 0), n, tb, pb), expected), 20.0);
+    EXPECT_LT(chiSquare(histogram(DirectionSampler(DirectionSequence::Stratified, 5, 4096), n, tb, pb), expected), 60.0);
+    DirectionSampler u(DirectionSequence::Halton, 0);
+    EXPECT_FLOAT_EQ(u.hemispherePdf(glm::vec3(0, 0, 1)), 1.0f / (2.0f * shader::kPi));
+}
+
+TEST(DirectionSampler, ImportanceFollowsEquationTwo) {
+    Environment env;
+    env.present = true;
+    env.map = readImage(bl::test::sharedPath("data/envmap/classroom-sky.hdr"));
+    EnvironmentLight light(env, true);
+    const float offset = 0.25f;
+    DirectionSampler s(DirectionSequence::Importance, 7, 256, &light, offset);
+    // p_r integrates to 1 over a hemisphere, and q to 1 over the sphere (numerically).
+    double sphere = 0.0, hemisphere = 0.0;
+    const int nt = 256, np = 512;
+    for (int t = 0; t < nt; ++t) {
+        for (int p = 0; p < np; ++p) {
+            float z = 1.0f - 2.0f * (t + 0.5f) / nt, r = std::sqrt(1.0f - z * z), phi = shader::kTwoPi * (p + 0.5f) / np;
+            glm::vec3 d(r * std::cos(phi), r * std::sin(phi), z);
+            double w = 4.0 * shader::kPi / (nt * np);
+            sphere += s.pdf(d) * w;
+            if (z > 0.0f) hemisphere += s.hemispherePdf(d) * w;
+        }
+    }
+    EXPECT_NEAR(sphere, 1.0, 0.01);
+    EXPECT_NEAR(hemisphere, 1.0, 0.01);
+    // Bright directions are sampled more often than the uniform density, dark ones never below L_o.
+    float minPdf = 1e30f, maxPdf = 0.0f;
+    for (int i = 0; i < 2000; ++i) {
+        float q = s.pdf(s.sample(i).omega);
+        minPdf = std::min(minPdf, q);
+        maxPdf = std::max(maxPdf, q);
+    }
+    EXPECT_GE(minPdf, offset / (1.0f + offset) / (4.0f * shader::kPi) * 0.999f);
+    EXPECT_GT(maxPdf, 1.0f / (4.0f * shader::kPi));
+    // A histogram of the samples follows q (chi-square over equal-area bins).
+    const int n = 200000, tb = 8, pb = 16;
+    std::vector<double> observed = histogram(s, n, tb, pb), expected(tb * pb, 0.0);
+    for (int t = 0; t < tb; ++t) {
+        for (int p = 0; p < pb; ++p) {
+            double integral = 0.0;
+            for (int j = 0; j < 16; ++j) {
+                for (int i = 0; i < 16; ++i) {
+                    float z = 1.0f - 2.0f * (t * 16 + j + 0.5f) / (tb * 16), r = std::sqrt(1.0f - z * z);
+                    float phi = shader::kTwoPi * (p * 16 + i + 0.5f) / (pb * 16);
+                    integral += s.pdf(glm::vec3(r * std::cos(phi), r * std::sin(phi), z));
+                }
+            }
+            expected[t * pb + p] = integral * (4.0 * shader::kPi / (tb * pb * 256)) * n;
+        }
+    }
+    EXPECT_LT(chiSquare(observed, expected), 181.0); // 0.999 quantile of chi-square(127)
+}
