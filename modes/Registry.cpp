@@ -3,6 +3,7 @@
 #include "base/Error.h"
 #include "modes/raster/RasterMode.h"
 #include "modes/reference/ReferenceMode.h"
+#include "modes/skylight/SkylightMode.h"
 
 namespace bl {
 
@@ -12,6 +13,8 @@ const ModeEntry kModes[] = {
      true, &RasterMode::parameters, &RasterMode::create},
     {"reference", "CPU path tracer (Embree): ground truth, layers by path length, per-pixel variance", false,
      &ReferenceMode::parameters, &ReferenceMode::create},
+    {"skylight", "direct environment light (and ambient occlusion) by global ray-bundles [TO12 section 3]", true,
+     &SkylightMode::parameters, &SkylightMode::create},
 };
 } // namespace
 

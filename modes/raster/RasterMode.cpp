@@ -1,7 +1,7 @@
 #include "modes/raster/RasterMode.h"
 
 #include "base/Error.h"
-#include "sampling/Halton.h"
+#include "sampling/PixelSamples.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
 #include "vk/Descriptors.h"
@@ -44,15 +44,6 @@ struct RasterMode::Gpu {
 };
 
 RasterMode::~RasterMode() = default;
-
-glm::vec2 RasterMode::samplePosition(std::uint32_t k, bool jitter) {
-    if (!jitter || k == 0) {
-        return glm::vec2(0.5f);
-    }
-    // Halton (2,3) shifted by 1/2 (a Cranley-Patterson rotation) so that k = 0 is the centre.
-    glm::vec2 p(static_cast<float>(radicalInverse(2, k)) + 0.5f, static_cast<float>(radicalInverse(3, k)) + 0.5f);
-    return p - glm::floor(p);
-}
 
 std::vector<PlannedPass> RasterMode::plan(const Scene& scene) const {
     SceneFeatures f = scene.features();
@@ -151,7 +142,7 @@ void RasterMode::iterate(const IterationInfo& info) {
     const Scene& scene = *mScene;
     const std::uint32_t width = g.gbuffer->width();
     const std::uint32_t height = g.gbuffer->height();
-    const glm::vec2 sample = samplePosition(mIterations, mSettings.getBool(kJitter));
+    const glm::vec2 sample = pixelSamplePosition(mIterations, mSettings.getBool(kJitter));
     const glm::vec2 jitterNdc = (sample - 0.5f) * glm::vec2(2.0f / width, 2.0f / height);
     const shader::GpuCamera camera = makeGpuCamera(scene.camera, info.time, g.scene->cameraNear());
     // Static scenes need their shadow maps once; animated ones whenever the time changes.

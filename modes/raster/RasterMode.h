@@ -42,9 +42,6 @@ public:
     PassTimes timings() const override;
     std::vector<PlannedPass> plan(const Scene& scene) const override;
 
-    // Sub-pixel sample position of iteration k, in [0, 1)^2.
-    static glm::vec2 samplePosition(std::uint32_t k, bool jitter);
-
 private:
     struct Gpu;
     Settings mSettings;

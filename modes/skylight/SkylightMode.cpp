@@ -1,0 +1,258 @@
+#include "modes/skylight/SkylightMode.h"
+
+#include "base/Error.h"
+#include "bundle/BundleFrame.h"
+#include "sampling/PixelSamples.h"
+#include "scene/Scene.h"
+#include "vk/Commands.h"
+
+#include <cstring>
+#include <modes/skylight/SkylightShared.h>
+#include <modes/skylight/visibility.comp.spv.h>
+#include <optional>
+#include <shared/Bindings.h>
+
+namespace bl {
+
+namespace {
+DirectionSequence sequenceOf(const std::string& name) {
+    if (name == "random") return DirectionSequence::Random;
+    if (name == "stratified") return DirectionSequence::Stratified;
+    if (name == "importance") return DirectionSequence::Importance;
+    return DirectionSequence::Halton;
+}
+
+glm::uvec2 split(VkDeviceAddress a) {
+    return {static_cast<std::uint32_t>(a & 0xffffffffu), static_cast<std::uint32_t>(a >> 32)};
+}
+} // namespace
+
+std::vector<ParamSpec> SkylightMode::parameters() {
+    return {
+        {kBundleResolution, std::int64_t{512}, "pixels", "side of each bundle ([TO12] used 256^2 to 1024^2)", 16, 8192, {}},
+        {kDirections, std::string("halton"), "", "bundle direction sequence (Hermes et al.: Halton covers best)", 0, 0,
+         {"halton", "random", "stratified", "importance"}},
+        {kImportanceOffset, 0.1, "", "L_o of [TO12] Eq. 2, as a fraction of the mean environment luminance", 0.0, 1e6, {}},
+        {kStrata, std::int64_t{1024}, "directions", "directions per pass of the stratified sequence", 1, 1 << 24, {}},
+        {kFit, std::string("scene"), "", "bundle frame around the scene's bounding sphere or the visible points", 0, 0,
+         {"scene", "visible"}},
+        {kRotate, true, "", "rotate each bundle frame randomly about its direction (decorrelates aliasing)", 0, 1, {}},
+        {kMemoryCap, std::int64_t{1024}, "MiB", "bundle node pool limit; beyond it bundles are built in tiles", 1,
+         1 << 20, {}},
+    };
+}
+
+std::unique_ptr<Mode> SkylightMode::create(const Settings& settings) { return std::make_unique<SkylightMode>(settings); }
+
+SkylightMode::SkylightMode(const Settings& settings) : mSettings(settings) {}
+
+struct SkylightMode::Gpu {
+    std::unique_ptr<gpu::GpuScene> scene;
+    std::unique_ptr<gpu::GBufferPass> gbuffer;
+    std::unique_ptr<BundleBuilder> builder;
+    std::unique_ptr<EnvironmentLight> environment;
+    std::unique_ptr<DirectionSampler> directions;
+    vk::GpuImage accum;
+    vk::Buffer frame;
+    vk::DescriptorSetLayout setLayout;
+    vk::DescriptorPool pool;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    vk::PipelineLayout pipelineLayout;
+    vk::Pipeline pipeline;
+    vk::GpuTimer timer;
+    std::vector<glm::vec3> visiblePoints; // for fit = visible
+    PassTimes builds;                     // bundle build ms (from the builder's timer)
+    BundleStats lastStats;
+};
+
+SkylightMode::~SkylightMode() = default;
+
+std::vector<PlannedPass> SkylightMode::plan(const Scene& scene) const {
+    SceneFeatures f = scene.features();
+    std::vector<PlannedPass> p;
+    p.push_back({"gbuffer", true, std::to_string(f.triangles) + " triangles, jittered every iteration"});
+    const bool env = f.environment;
+    p.push_back({"bundle build", env,
+                 env ? std::to_string(mSettings.getInt(kBundleResolution)) + "^2 bundle of every triangle per direction"
+                     : "no environment: no light to test visibility for"});
+    p.push_back({"visibility", env, env ? "one list walk per visible point per direction" : "no environment"});
+    if (f.shadowCastingLights() || f.emissiveMeshes) {
+        p.push_back({"point/spot/area light", false, "not skylight's job: use reference, raster or bidir"});
+    }
+    return p;
+}
+
+void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
+    if (!ctx) {
+        throw Error("mode skylight needs a Vulkan device");
+    }
+    mScene = &scene;
+    mContext = ctx;
+    mIterations = 0;
+    const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
+    const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
+    ctx->requireDeviceMemory(VkDeviceSize(width) * height * (4 * 16 + 4 + 16), "skylight at " + std::to_string(width) +
+                                                                                   "x" + std::to_string(height));
+    auto g = std::make_unique<Gpu>();
+    g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
+    g->gbuffer = std::make_unique<gpu::GBufferPass>(*ctx, *g->scene, width, height);
+    BundleBuilderOptions options;
+    options.memoryCapBytes = static_cast<std::uint64_t>(mSettings.getInt(kMemoryCap)) << 20;
+    g->builder = std::make_unique<BundleBuilder>(*ctx, *g->scene, options);
+    g->environment = std::make_unique<EnvironmentLight>(scene.environment, true);
+    const DirectionSequence sequence = sequenceOf(mSettings.getString(kDirections));
+    if (sequence == DirectionSequence::Importance && !scene.environment.present) {
+        throw Error("skylight: directions=importance needs an environment in the scene");
+    }
+    g->accum = vk::GpuImage(*ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
+    g->frame = vk::Buffer(*ctx, sizeof(shader::BundleFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
+    g->timer = vk::GpuTimer(*ctx);
+
+    VkDevice device = ctx->device();
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    g->setLayout = vk::makeDescriptorSetLayout(
+        device, {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs, shader::kGBufferAttachmentCount},
+                 {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
+                 {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
+                 {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
+                 {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs}});
+    g->pool = vk::DescriptorPool(device, 1, 8);
+    g->set = g->pool.allocate(g->setLayout.get());
+    vk::DescriptorWriter writer;
+    for (std::uint32_t i = 0; i < shader::kGBufferAttachmentCount; ++i) {
+        writer.image(0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->gbuffer->attachment(i).view(), VK_IMAGE_LAYOUT_GENERAL,
+                     VK_NULL_HANDLE, i);
+    }
+    writer.buffer(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, g->gbuffer->cameraBuffer())
+        .buffer(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->materialBuffer())
+        .buffer(3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, g->frame.get())
+        .image(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->accum.view(), VK_IMAGE_LAYOUT_GENERAL)
+        .image(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, g->scene->environmentView(),
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, g->scene->environmentSampler())
+        .update(device, g->set);
+    VkDescriptorSetLayout layouts[] = {g->setLayout.get()};
+    g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::SkylightPush), cs);
+    g->pipeline = vk::makeComputePipeline(device, kSpv_modes_skylight_visibility_comp, g->pipelineLayout.get());
+
+    ctx->submitAndWait([&](VkCommandBuffer cmd) {
+        vk::transitionImage(cmd, g->accum.get(), vk::ImageTransition{});
+        VkClearColorValue zero{};
+        VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, g->accum.get(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+    });
+    mGpu = std::move(g);
+
+    // The seed only decorrelates runs; directions are reproducible from (settings, seed).
+    mGpu->directions.reset();
+}
+
+void SkylightMode::iterate(const IterationInfo& info) {
+    if (!mGpu) {
+        throw Error("skylight: iterate() before setScene()");
+    }
+    Gpu& g = *mGpu;
+    const Scene& scene = *mScene;
+    if (!g.directions) {
+        g.directions = std::make_unique<DirectionSampler>(
+            sequenceOf(mSettings.getString(kDirections)), static_cast<std::uint32_t>(info.seed),
+            static_cast<std::uint32_t>(mSettings.getInt(kStrata)), g.environment.get(),
+            static_cast<float>(mSettings.getDouble(kImportanceOffset)));
+    }
+    const std::uint32_t width = g.gbuffer->width(), height = g.gbuffer->height();
+    const glm::vec2 sample = pixelSamplePosition(mIterations);
+    const glm::vec2 jitterNdc = (sample - 0.5f) * glm::vec2(2.0f / width, 2.0f / height);
+    const shader::GpuCamera camera = makeGpuCamera(scene.camera, info.time, g.scene->cameraNear());
+    mContext->submitAndWait([&](VkCommandBuffer cmd) {
+        g.timer.begin(cmd);
+        g.gbuffer->record(cmd, camera, jitterNdc, info.time, &g.timer);
+    });
+    g.timer.collect();
+
+    const BundleDirection dir = g.directions->sample(mIterations);
+    const float rotation = mSettings.getBool(kRotate) ? dir.rotation : 0.0f;
+    const std::uint32_t resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+    const Bounds bounds = scene.bounds();
+    if (mSettings.getString(kFit) == "visible" && g.visiblePoints.empty()) {
+        // The visible points of the first G-buffer (later jitter moves them by under a pixel: the
+        // frame keeps a margin of one bundle pixel).
+        std::vector<std::byte> raw = g.gbuffer->attachment(shader::kGBufferPosition).download(*mContext, VK_IMAGE_LAYOUT_GENERAL);
+        const auto* p = reinterpret_cast<const glm::vec4*>(raw.data());
+        for (std::size_t i = 0; i < std::size_t(width) * height; ++i) {
+            if (p[i].w > 0.0f) g.visiblePoints.emplace_back(p[i]);
+        }
+    }
+    shader::BundleFrame frame =
+        g.visiblePoints.empty()
+            ? bundleFrameForSphere(dir.omega, rotation, bounds.center(), bounds.radius(), resolution)
+            : bundleFrameForPoints(dir.omega, rotation, g.visiblePoints, bounds.center(), bounds.radius(), resolution);
+
+    shader::SkylightPush push{};
+    push.radianceForward = g.environment->radiance(dir.omega);
+    push.radianceBackward = g.environment->radiance(-dir.omega);
+    push.pdfForward = g.directions->hemispherePdf(dir.omega);
+    push.pdfBackward = g.directions->hemispherePdf(-dir.omega);
+    push.width = width;
+    push.height = height;
+    push.environmentRotation = g.scene->environmentRotation();
+    push.samplePosition = sample;
+    push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
+    bool first = true;
+    g.lastStats = g.builder->build(frame, info.time, [&](const BuiltBundle& built) {
+        std::memcpy(g.frame.data(), &built.frame, sizeof(built.frame));
+        push.headAddress = split(built.heads);
+        push.nodeAddress = split(built.nodes);
+        push.addBase = first ? 1u : 0u;
+        first = false;
+        mContext->submitAndWait([&](VkCommandBuffer cmd) {
+            g.timer.begin(cmd);
+            std::uint32_t scope = g.timer.start(cmd, "visibility");
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 1, &g.set, 0, nullptr);
+            vkCmdPushConstants(cmd, g.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+            vkCmdDispatch(cmd, vk::groupCount(width, shader::kSkylightGroupSize),
+                          vk::groupCount(height, shader::kSkylightGroupSize), 1);
+            g.timer.stop(cmd, scope);
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                              VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+        });
+        g.timer.collect();
+    });
+    if (g.builds.empty()) {
+        g.builds.push_back({"bundle build", 0.0, 0});
+    }
+    g.builds[0].totalMs += g.lastStats.buildMs;
+    g.builds[0].count += 1;
+    ++mIterations;
+}
+
+ImageSet SkylightMode::resolve() {
+    if (!mGpu) {
+        throw Error("skylight: resolve() before setScene()");
+    }
+    Gpu& g = *mGpu;
+    const int width = static_cast<int>(g.gbuffer->width()), height = static_cast<int>(g.gbuffer->height());
+    std::vector<std::byte> raw = g.accum.download(*mContext, VK_IMAGE_LAYOUT_GENERAL);
+    const auto* sums = reinterpret_cast<const glm::vec4*>(raw.data());
+    ImageSet out;
+    out.iterations = mIterations;
+    Image radiance(width, height);
+    for (std::size_t i = 0; i < radiance.pixelCount(); ++i) {
+        radiance.pixels()[i] = sums[i].w > 0.0f ? glm::vec3(sums[i]) / sums[i].w : glm::vec3(0.0f);
+        out.nonFiniteSamples += static_cast<std::uint64_t>(mIterations - std::min<float>(sums[i].w, float(mIterations)));
+    }
+    out.layers.emplace_back("", std::move(radiance));
+    out.counters.emplace_back("bundle_fragments_last", double(g.lastStats.fragments));
+    out.counters.emplace_back("bundle_rebuilds_last", double(g.lastStats.rebuilds));
+    out.counters.emplace_back("bundle_tiles_last", double(g.lastStats.tiles));
+    return out;
+}
+
+PassTimes SkylightMode::timings() const {
+    if (!mGpu) return {};
+    PassTimes t = mGpu->timer.totals();
+    t.insert(t.end(), mGpu->builds.begin(), mGpu->builds.end());
+    return t;
+}
+
+} // namespace bl

@@ -1,0 +1,101 @@
+// Skylight converges to the reference path tracer's direct environment light, and its variance
+// falls as 1/N with random directions.
+#include "image/Metrics.h"
+
+#include <cstdio>
+#include "modes/Registry.h"
+#include "modes/reference/ReferenceTestSupport.h"
+#include "scene/SceneLoader.h"
+#include "support/TestFiles.h"
+#include "support/VulkanTest.h"
+
+using namespace bl;
+
+namespace {
+
+class Skylight : public bl::test::VulkanTest {
+protected:
+    Image render(const Scene& scene, std::uint32_t directions, const std::vector<std::string>& settings,
+                 std::uint64_t seed = 0) {
+        std::unique_ptr<Mode> mode = createMode("skylight", settings);
+        mode->setScene(scene, &ctx());
+        for (std::uint32_t i = 0; i < directions; ++i) {
+            mode->iterate({i, seed, 0.0});
+        }
+        ImageSet out = mode->resolve();
+        EXPECT_EQ(out.nonFiniteSamples, 0u);
+        EXPECT_EQ(out.radiance().countNonFinite(), 0u);
+        return out.radiance();
+    }
+};
+
+Scene loadSmall(const std::string& path, int resolution) {
+    Scene s = loadScene(bl::test::sourcePath(path));
+    s.camera.resolution = {resolution, resolution};
+    return s;
+}
+
+} // namespace
+
+// Ambient occlusion (a constant white sky) against the reference's emitted + direct layers.
+// Tolerance from the bundle's resolution: a point's visibility is the one of the ray through its
+// bundle pixel's centre, up to half a pixel diagonal away, so shadow boundaries shift by up to
+// 0.7 bundle pixels (2 cm here, 1/500 of the scene): block means near contact shadows move by a
+// few percent at most, and the image mean by far less.
+TEST_F(Skylight, AmbientOcclusionMatchesReference) {
+    Scene s = loadSmall("data/analytic/ao-blocks.toml", 128);
+    Image sky = render(s, 1024, {"bundle_resolution=512"});
+    Image ref = bl::test::renderReference(s, 256, {"max_segments=2"}).radiance();
+    ImageMetrics m = computeMetrics(sky, ref);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(m.meanRatio[c], 1.0, 0.005);
+    EXPECT_LT(m.blockRatios.rms, 0.015);
+}
+
+// An environment map with a bright sky, directions importance-sampled by [TO12] Eq. 2, and a
+// glossy block: every direction is shared by all points, so the remaining error is correlated
+// over the image and shrinks slowly; the bounds are loose but two-sided.
+TEST_F(Skylight, EnvironmentMapWithImportanceDirectionsMatchesReference) {
+    Scene s = loadSmall("data/analytic/sky-blocks.toml", 96);
+    Image sky = render(s, 2048, {"bundle_resolution=512", "directions=importance"});
+    Image ref = bl::test::renderReference(s, 256, {"max_segments=2"}).radiance();
+    ImageMetrics m = computeMetrics(sky, ref);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(m.meanRatio[c], 1.0, 0.015);
+    EXPECT_LT(m.blockRatios.rms, 0.05);
+}
+
+// With independent random directions the estimate's variance across seeds falls as 1/N.
+TEST_F(Skylight, VarianceFallsAsOneOverN) {
+    Scene s = loadSmall("data/analytic/ao-blocks.toml", 16);
+    // Every pixel of one run shares its directions, so pixels do not average the seed noise out:
+    // 48 seeds estimate each variance to about +-20%.
+    const int seeds = 48;
+    auto varianceAt = [&](std::uint32_t n) {
+        std::vector<Image> images;
+        for (int seed = 1; seed <= seeds; ++seed) {
+            images.push_back(render(s, n, {"bundle_resolution=128", "directions=random"}, seed));
+        }
+        double total = 0.0;
+        for (std::size_t p = 0; p < images[0].pixelCount(); ++p) {
+            double mean = 0.0, sq = 0.0;
+            for (const Image& img : images) {
+                mean += img.pixels()[p].x;
+                sq += double(img.pixels()[p].x) * img.pixels()[p].x;
+            }
+            mean /= seeds;
+            total += (sq / seeds - mean * mean) * seeds / (seeds - 1.0);
+        }
+        return total / double(images[0].pixelCount());
+    };
+    const double v8 = varianceAt(8), v32 = varianceAt(32);
+    std::printf("variance with 8 directions %.4g, with 32 %.4g: ratio %.2f (1/N: 4)\n", v8, v32, v8 / v32);
+    // 4x the directions, 1/4 the variance.
+    EXPECT_GT(v8 / v32, 2.4) << v8 << " " << v32;
+    EXPECT_LT(v8 / v32, 6.6) << v8 << " " << v32;
+}
+
+TEST_F(Skylight, TilesUnderAMemoryCapGiveTheSameImage) {
+    Scene s = loadSmall("data/analytic/ao-blocks.toml", 48);
+    Image whole = render(s, 8, {"bundle_resolution=256"});
+    Image tiled = render(s, 8, {"bundle_resolution=256", "memory_cap_mib=1"});
+    EXPECT_EQ(whole.pixels(), tiled.pixels());
+}
