@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
     bl::cli::addCompareCommand(app, action);
     bl::cli::addStatsCommand(app, action);
     bl::cli::addReplayCommand(app, action);
+    bl::cli::addBenchCommand(app, action);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

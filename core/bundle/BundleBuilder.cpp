@@ -13,6 +13,7 @@
 #include <bundle/build_exact.frag.spv.h>
 #include <bundle/build_exact_subgroup.frag.spv.h>
 #include <bundle/count.frag.spv.h>
+#include <bundle/count_subgroup.frag.spv.h>
 #include <bundle/stats.comp.spv.h>
 #include <cmath>
 #include <cstring>
@@ -74,20 +75,18 @@ BundleBuilder::BundleBuilder(const vk::Context& ctx, const gpu::GpuScene& scene,
     mFrame = vk::Buffer(ctx, sizeof(shader::BundleFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
     mStats = vk::Buffer(ctx, 4 * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Device);
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
-    // 0: frame, 1: materials, 2: list statistics, 3: vertices, 4: indices (exact depths).
+    // 0: frame, 1: materials, 2: list statistics, 3: triangle planes (exact depths).
     mSetLayout = vk::makeDescriptorSetLayout(device, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, stages},
                                                       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages},
                                                       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages},
-                                                      {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages},
-                                                      {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages}});
+                                                      {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages}});
     mPool = vk::DescriptorPool(device, 2, 8);
     mSet = mPool.allocate(mSetLayout.get());
     vk::DescriptorWriter()
         .buffer(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, mFrame.get())
         .buffer(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.materialBuffer())
         .buffer(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, mStats.get())
-        .buffer(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.vertexBuffer())
-        .buffer(4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.indexBuffer())
+        .buffer(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.planeBuffer())
         .update(device, mSet);
     VkDescriptorSetLayout layouts[] = {mSetLayout.get()};
     mPipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BundleBuildPush), stages);
@@ -112,7 +111,8 @@ BundleBuilder::BundleBuilder(const vk::Context& ctx, const gpu::GpuScene& scene,
     desc.vertexAttributes = gpu::GpuScene::vertexAttributes();
     desc.layout = mPipelineLayout.get(); // no attachments, no depth test, no culling
     mBuildPipeline = vk::makeGraphicsPipeline(device, desc);
-    desc.fragmentShader = kSpv_bundle_count_frag;
+    desc.fragmentShader = mSubgroups ? std::span<const std::uint32_t>(kSpv_bundle_count_subgroup_frag)
+                                     : std::span<const std::uint32_t>(kSpv_bundle_count_frag);
     mCountPipeline = vk::makeGraphicsPipeline(device, desc);
     mStatsPipeline = vk::makeComputePipeline(device, kSpv_bundle_stats_comp, mPipelineLayout.get());
     mTimer = vk::GpuTimer(ctx);
@@ -184,9 +184,12 @@ BundleBuilder::Attempt BundleBuilder::buildOnce(const shader::BundleFrame& frame
 void BundleBuilder::readStatistics(const shader::BundleFrame& frame, BundleStats& stats) {
     const std::uint32_t zero[4] = {0, 0, 0, 0};
     const std::uint32_t pixels = frame.width * frame.height;
+    std::memcpy(mFrame.data(), &frame, sizeof(frame));
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
+        mTimer.begin(cmd);
         vkCmdUpdateBuffer(cmd, mStats.get(), 0, sizeof(zero), zero);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        std::uint32_t scope = mTimer.start(cmd, "traverse all lists");
         shader::BundleBuildPush push{};
         push.headAddress = split(addressOf(*mContext, mHeads));
         push.nodeAddress = split(addressOf(*mContext, mNodes));
@@ -197,7 +200,11 @@ void BundleBuilder::readStatistics(const shader::BundleFrame& frame, BundleStats
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0,
                            sizeof(push), &push);
         vkCmdDispatch(cmd, vk::groupCount(pixels, kStatsGroupSize), 1, 1);
+        mTimer.stop(cmd, scope);
     });
+    mTimer.collect();
+    for (const PassTime& p : mTimer.totals()) stats.traverseMs += p.totalMs;
+    mTimer.clearTotals();
     std::uint32_t out[4];
     mStats.download(*mContext, out, sizeof(out));
     stats.nonEmptyPixels += out[0];

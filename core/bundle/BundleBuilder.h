@@ -25,7 +25,8 @@ struct BundleBuilderOptions {
     std::uint64_t initialNodes = 0;          // pool size at start (0: 4 per pixel of the first frame)
     std::uint64_t memoryCapBytes = 1ull << 30; // pool (+ payload) never exceeds this
     bool subgroupAllocation = true;          // used when the device supports it
-    bool listStatistics = false;             // longest list, non-empty pixels (one extra pass)
+    bool listStatistics = false;             // longest list, non-empty pixels (one extra pass that
+                                             // walks every list: also the traversal benchmark)
 };
 
 // A built bundle (or one tile of it), valid during the consumer callback.
@@ -44,6 +45,7 @@ struct BundleStats {
     std::uint32_t rebuilds = 0;       // builds repeated after the pool grew
     std::uint32_t tiles = 1;          // parts the frame was split into
     double buildMs = 0.0;             // GPU time of the final builds
+    double traverseMs = 0.0;          // GPU time of the statistics pass: every list walked once
     double meanListLength() const { return nonEmptyPixels ? double(fragments) / nonEmptyPixels : 0.0; }
 };
 

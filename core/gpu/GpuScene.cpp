@@ -12,6 +12,7 @@ GpuScene::GpuScene(const vk::Context& ctx, const Scene& scene) : mScene(&scene),
     mRadius = std::max(mFeatures.bounds.radius(), 1e-30f);
     std::vector<shader::GpuVertex> vertices;
     std::vector<std::uint32_t> indices;
+    std::vector<glm::vec4> planes;
     for (std::uint32_t i = 0; i < scene.meshes.size(); ++i) {
         const Mesh& m = scene.meshes[i];
         GpuDraw d{i, static_cast<std::uint32_t>(indices.size()), static_cast<std::uint32_t>(m.triangles.size() * 3),
@@ -22,12 +23,16 @@ GpuScene::GpuScene(const vk::Context& ctx, const Scene& scene) : mScene(&scene),
         }
         for (const glm::uvec3& t : m.triangles) {
             indices.insert(indices.end(), {t.x, t.y, t.z});
+            const glm::vec3& a = m.positions[t.x];
+            glm::vec3 n = glm::normalize(glm::cross(m.positions[t.y] - a, m.positions[t.z] - a));
+            planes.emplace_back(n, glm::dot(n, a));
         }
         mDraws.push_back(d);
     }
     const VkBufferUsageFlags geometry = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     mVertices = vk::makeBuffer<shader::GpuVertex>(ctx, vertices, geometry | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     mIndices = vk::makeBuffer<std::uint32_t>(ctx, indices, geometry | VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    mPlanes = vk::makeBuffer<glm::vec4>(ctx, planes, geometry);
 
     std::vector<shader::GpuMaterial> materials;
     for (const Material& m : scene.materials) {

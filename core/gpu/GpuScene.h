@@ -37,6 +37,8 @@ public:
     VkBuffer indexBuffer() const { return mIndices.get(); }
     VkBuffer materialBuffer() const { return mMaterials.get(); }
     VkBuffer lightBuffer() const { return mLights.get(); }
+    // Per triangle (GpuScene order), in the mesh's own space: vec4(unit front normal, n . p0).
+    VkBuffer planeBuffer() const { return mPlanes.get(); }
     const std::vector<GpuDraw>& draws() const { return mDraws; }
     const std::vector<shader::GpuLight>& lights() const { return mGpuLights; }
 
@@ -65,6 +67,7 @@ private:
     vk::Buffer mIndices;
     vk::Buffer mMaterials;
     vk::Buffer mLights;
+    vk::Buffer mPlanes;
     std::vector<GpuDraw> mDraws;
     std::vector<shader::GpuLight> mGpuLights;
     std::vector<vk::GpuImage> mTextures; // scene textures, then one white texel

@@ -17,19 +17,15 @@ layout(set = 0, binding = 1) readonly buffer MaterialBlock { GpuMaterial materia
 
 layout(push_constant) uniform PushBlock { BundleBuildPush push; };
 #ifdef BL_EXACT_DEPTH
-layout(set = 0, binding = 3) readonly buffer VertexBlock { GpuVertex vertices[]; };
-layout(set = 0, binding = 4) readonly buffer IndexBlock { uint indices[]; };
+layout(set = 0, binding = 3) readonly buffer PlaneBlock { vec4 planes[]; };
 
 // The exact depth where this pixel's centre ray meets the triangle's plane (what a ray tracer
-// computes), and the exact face: no dependence on the rasterizer's sub-pixel snapping.
+// computes), and the exact face: no dependence on the rasterizer's sub-pixel snapping. The plane
+// is precomputed per triangle in the mesh's space and moved by the rigid model matrix.
 bool exactDepth(out float depth, out bool frontFacesMinusOmega) {
-    uint triangle = push.firstTriangle + uint(gl_PrimitiveID);
-    vec3 p[3];
-    for (int k = 0; k < 3; ++k) {
-        uint v = indices[3u * triangle + uint(k)] + push.vertexOffset;
-        p[k] = (push.model * vec4(vertices[v].positionU.xyz, 1.0)).xyz;
-    }
-    vec3 n = cross(p[1] - p[0], p[2] - p[0]);
+    vec4 plane = planes[push.firstTriangle + uint(gl_PrimitiveID)];
+    vec3 n = mat3(push.model) * plane.xyz;
+    float offset = plane.w + dot(n, push.model[3].xyz);
     float cosine = dot(n, frame.direction);
     vec3 ray = frame.origin + gl_FragCoord.x * frame.pixelSize * frame.axisX +
                gl_FragCoord.y * frame.pixelSize * frame.axisY;
@@ -37,7 +33,7 @@ bool exactDepth(out float depth, out bool frontFacesMinusOmega) {
     if (cosine == 0.0) {
         return false;
     }
-    depth = dot(p[0] - ray, n) / cosine;
+    depth = (offset - dot(n, ray)) / cosine;
     return true;
 }
 #endif
