@@ -18,5 +18,7 @@ void addCompareCommand(CLI::App& app, Action& action);
 void addStatsCommand(CLI::App& app, Action& action);
 void addReplayCommand(CLI::App& app, Action& action);
 void addBenchCommand(CLI::App& app, Action& action);
+void addRunCommand(CLI::App& app, Action& action);
+void addReportCommand(CLI::App& app, Action& action);
 
 } // namespace bl::cli

@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
     bl::cli::addStatsCommand(app, action);
     bl::cli::addReplayCommand(app, action);
     bl::cli::addBenchCommand(app, action);
+    bl::cli::addRunCommand(app, action);
+    bl::cli::addReportCommand(app, action);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

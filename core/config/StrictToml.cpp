@@ -160,6 +160,63 @@ std::vector<StrictTable> StrictTable::tables(const std::string& key) {
     return out;
 }
 
+namespace {
+ParamValue scalarValue(const StrictTable& t, const std::string& key, const toml::node& n) {
+    if (n.is_boolean()) return ParamValue(*n.value<bool>());
+    if (n.is_integer()) return ParamValue(*n.value<std::int64_t>());
+    if (n.is_floating_point()) return ParamValue(finiteNumber(t, key, n));
+    if (n.is_string()) return ParamValue(*n.value<std::string>());
+    t.fail(key, "expected a boolean, number or string");
+}
+} // namespace
+
+std::vector<StrictTable::Entry> StrictTable::entries(const std::string& key) {
+    std::vector<Entry> out;
+    const toml::node* n = find(key);
+    if (!n) {
+        return out;
+    }
+    const toml::table* t = n->as_table();
+    if (!t) {
+        fail(key, "expected a table");
+    }
+    StrictTable inner(*t, mFile, mContext.empty() ? key : mContext + "." + key);
+    for (auto&& [k, v] : *t) {
+        Entry e;
+        e.key = std::string(k.str());
+        e.line = static_cast<int>(v.source().begin.line);
+        if (const toml::array* a = v.as_array()) {
+            e.isArray = true;
+            for (const toml::node& item : *a) {
+                e.values.push_back(scalarValue(inner, e.key, item));
+            }
+            if (e.values.empty()) {
+                inner.fail(e.key, "empty array");
+            }
+        } else {
+            e.values.push_back(scalarValue(inner, e.key, v));
+        }
+        out.push_back(std::move(e));
+    }
+    return out;
+}
+
+std::vector<ParamValue> StrictTable::list(const std::string& key) {
+    std::vector<ParamValue> out;
+    const toml::node* n = find(key);
+    if (!n) {
+        return out;
+    }
+    const toml::array* a = n->as_array();
+    if (!a) {
+        fail(key, "expected an array");
+    }
+    for (const toml::node& item : *a) {
+        out.push_back(scalarValue(*this, key, item));
+    }
+    return out;
+}
+
 void StrictTable::finish() const {
     for (auto&& [k, v] : *mTable) {
         std::string key(k.str());

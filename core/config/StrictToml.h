@@ -3,6 +3,8 @@
 // back to a default. Used for scene files and experiment configs alike.
 #pragma once
 
+#include "config/Settings.h"
+
 #include <glm/glm.hpp>
 #include <memory>
 #include <optional>
@@ -47,6 +49,19 @@ public:
     bool isArray(const std::string& key) const;
 
     std::optional<StrictTable> table(const std::string& key);
+
+    // A free-form table's entries (e.g. mode settings, whose keys the mode knows, not the reader):
+    // scalars as ParamValue, arrays as their elements. Non-finite numbers and nested tables are
+    // errors. Marks the key read.
+    struct Entry {
+        std::string key;
+        int line = 0;
+        bool isArray = false;
+        std::vector<ParamValue> values; // one for a scalar
+    };
+    std::vector<Entry> entries(const std::string& key);
+    // An array of scalars (booleans, numbers, strings) as ParamValues; empty if absent.
+    std::vector<ParamValue> list(const std::string& key);
     // An array of tables ([[key]]); empty if absent. Elements are named key[i] in messages.
     std::vector<StrictTable> tables(const std::string& key);
 

@@ -12,6 +12,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -101,6 +102,22 @@ void writePng(const std::string& path, const Image& image, float exposure) {
     std::string tmp = path + ".tmp";
     if (!stbi_write_png(tmp.c_str(), image.width(), image.height(), 3, bytes.data(), image.width() * 3)) {
         throw Error(path + ": cannot write PNG");
+    }
+    commitFile(tmp, path);
+}
+
+void writePfm(const std::string& path, const Image& image) {
+    std::string tmp = path + ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out << "PF\n" << image.width() << " " << image.height() << "\n-1.0\n";
+        // PFM stores rows bottom to top.
+        for (int y = image.height() - 1; y >= 0; --y) {
+            out.write(reinterpret_cast<const char*>(&image.at(0, y)), sizeof(glm::vec3) * image.width());
+        }
+        if (!out) {
+            throw Error(path + ": cannot write PFM");
+        }
     }
     commitFile(tmp, path);
 }

@@ -25,6 +25,10 @@ void writeExr(const std::string& path, const Image& image);
 // so that they are seen.
 void writePng(const std::string& path, const Image& image, float exposure = 0.0f);
 
+// Portable float map (RGB float32, little-endian): a float image any script can read (numpy) where
+// no EXR reader exists. Written atomically.
+void writePfm(const std::string& path, const Image& image);
+
 // Reads the main RGB layer (or the named layer) of an EXR, a Radiance .hdr, or an 8-bit image
 // (PNG/JPEG/…, decoded from sRGB to linear). Errors name the file.
 Image readImage(const std::string& path, const std::string& layer = "");

@@ -1,0 +1,183 @@
+#include "runner/TaskRunner.h"
+
+#include "base/Error.h"
+#include "base/Json.h"
+#include "base/RunEnvironment.h"
+#include "image/ImageIO.h"
+#include "image/Metrics.h"
+#include "modes/Registry.h"
+#include "runner/FileUtil.h"
+#include "scene/SceneLoader.h"
+#include "vk/Context.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace bl {
+
+namespace {
+
+std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.9g", v);
+    return buf;
+}
+
+std::string params(const Task& t) {
+    std::string s;
+    for (const auto& [k, v] : t.gridPoint) s += (s.empty() ? "" : ";") + k + "=" + formatValue(v);
+    return s;
+}
+
+double gpuMs(const PassTimes& passes) {
+    double total = 0.0;
+    for (const PassTime& p : passes) total += p.totalMs;
+    return total;
+}
+
+} // namespace
+
+TaskRunner::TaskRunner(const ExperimentConfig& config, const ReferenceCache& references, std::string outDir)
+    : mConfig(&config), mReferences(&references), mOutDir(std::move(outDir)) {}
+
+std::string TaskRunner::directory(const Task& task) const { return (fs::path(mOutDir) / "tasks" / task.id).string(); }
+
+bool TaskRunner::finished(const Task& task) const {
+    std::string done;
+    return readFileIfExists((fs::path(directory(task)) / "done.json").string(), done) &&
+           done.find("\"hash\": \"" + task.hash + "\"") != std::string::npos &&
+           fs::is_regular_file(fs::path(directory(task)) / "result.csv");
+}
+
+void TaskRunner::run(const Task& task, vk::Context* gpu) const {
+    const fs::path dir = directory(task);
+    fs::remove_all(dir); // a partial task from a killed run starts over
+    fs::create_directories(dir);
+
+    const SceneEntry& entry = mConfig->scene(task.scene);
+    Scene scene = loadScene(entry.file);
+    if (entry.resolution) scene.camera.resolution = *entry.resolution;
+    const ModeEntry& modeEntry = findMode(task.mode);
+    Settings settings(modeEntry.parameters());
+    for (const auto& [k, v] : task.settings) settings.set(k, v);
+    std::unique_ptr<Mode> mode = modeEntry.create(settings);
+    if (modeEntry.needsGpu && !gpu) {
+        throw Error("task " + task.id + ": mode " + task.mode + " needs a Vulkan device");
+    }
+    mode->setScene(scene, modeEntry.needsGpu ? gpu : nullptr);
+
+    const RunEnvironment env = currentRunEnvironment();
+    const std::string device = modeEntry.needsGpu ? gpu->info().describe() : "";
+    {
+        std::ostringstream j;
+        JsonWriter w(j);
+        w.beginObject().field("id", task.id).field("index", task.index).field("scene", task.scene);
+        w.field("scene_file", entry.file).field("mode", task.mode).field("label", task.label);
+        w.field("seed", static_cast<unsigned long long>(task.seed)).field("hash", task.hash);
+        w.field("budget_iterations", task.budget.iterations).field("budget_seconds", task.budget.seconds);
+        w.key("checkpoints").beginArray();
+        for (std::uint32_t c : task.checkpoints) w.value(c);
+        w.endArray();
+        w.key("settings").beginObject();
+        for (const auto& [k, v] : mode->settings().resolved()) w.field(k, v);
+        w.endObject().endObject();
+        writeFileAtomic((dir / "task.json").string(), j.str() + "\n");
+        std::ostringstream e;
+        JsonWriter we(e);
+        we.beginObject().field("device", device).field("cpu", env.cpu).field("hardware_threads", env.hardwareThreads);
+        we.field("build_type", env.buildType).field("git_revision", env.gitRevision).field("version", env.version);
+        we.endObject();
+        writeFileAtomic((dir / "environment.json").string(), e.str() + "\n");
+    }
+
+    const ReferenceImage* reference = mReferences->find(task);
+    std::string metrics = "iteration,wall_seconds,gpu_ms,mse,rmse,relmse,smape,mae,mean_ratio_r,mean_ratio_g,"
+                          "mean_ratio_b,block_ratio_rms,block_ratio_max\n";
+    ImageMetrics last;
+    bool haveMetrics = false;
+    using Clock = std::chrono::steady_clock;
+    double wall = 0.0; // time in iterate() only: checkpoints and metrics are not the method's cost
+    std::uint32_t done = 0;
+    std::uint32_t nextPowerOfTwo = 1;
+    auto isCheckpoint = [&](std::uint32_t n) {
+        if (task.budget.iterations) {
+            return std::find(task.checkpoints.begin(), task.checkpoints.end(), n) != task.checkpoints.end();
+        }
+        if (n == nextPowerOfTwo) {
+            nextPowerOfTwo *= 2;
+            return true;
+        }
+        return false;
+    };
+    ImageSet images;
+    auto checkpoint = [&]() {
+        images = mode->resolve();
+        writeExr((dir / ("iter-" + std::to_string(done) + ".exr")).string(), images.radiance());
+        std::string row = std::to_string(done) + "," + number(wall) + "," + number(gpuMs(mode->timings()));
+        if (reference) {
+            Image test = images.radiance(), ref = reference->image;
+            matchResolution(test, ref);
+            last = computeMetrics(test, ref);
+            haveMetrics = true;
+            for (double v : {last.mse, last.rmse, last.relMse, last.smape, last.mae, last.meanRatio.x, last.meanRatio.y,
+                             last.meanRatio.z, last.blockRatios.rms, last.blockRatios.maxDeviation}) {
+                row += "," + number(v);
+            }
+        } else {
+            row += ",,,,,,,,,,";
+        }
+        metrics += row + "\n";
+        writeFileAtomic((dir / "metrics.csv").string(), metrics);
+    };
+    while (task.budget.iterations ? done < task.budget.iterations : wall < task.budget.seconds) {
+        auto start = Clock::now();
+        mode->iterate({done, task.seed, 0.0});
+        wall += std::chrono::duration<double>(Clock::now() - start).count();
+        ++done;
+        if (isCheckpoint(done)) {
+            checkpoint();
+        }
+    }
+    if (metrics.find("\n" + std::to_string(done) + ",") == std::string::npos) {
+        checkpoint(); // a time budget ends between powers of two
+    }
+
+    writeExr((dir / "final.exr").string(), images.radiance());
+    writePng((dir / "final.png").string(), images.radiance());
+    writePfm((dir / "final.pfm").string(), images.radiance());
+    std::string passes = "pass,total_ms,count,mean_ms\n";
+    for (const PassTime& p : mode->timings()) {
+        passes += csvField(p.name) + "," + number(p.totalMs) + "," + std::to_string(p.count) + "," + number(p.meanMs()) + "\n";
+    }
+    writeFileAtomic((dir / "passes.csv").string(), passes);
+
+    std::string row = std::to_string(task.index) + "," + csvField(task.id) + "," + csvField(task.scene) + "," +
+                      csvField(task.mode) + "," + csvField(task.label) + "," + csvField(params(task)) + "," +
+                      std::to_string(task.seed) + "," + std::to_string(done) + "," + number(wall) + "," +
+                      number(gpuMs(mode->timings()));
+    if (haveMetrics) {
+        for (double v : {last.mse, last.rmse, last.relMse, last.smape, last.mae, last.meanRatio.x, last.meanRatio.y,
+                         last.meanRatio.z, last.blockRatios.rms}) {
+            row += "," + number(v);
+        }
+        row += "," + number(reference->noiseRelMse);
+    } else {
+        row += ",,,,,,,,,,";
+    }
+    row += "," + csvField(fs::relative(dir, mOutDir).string());
+    if (reference) {
+        // Which reference image this task is judged against (the report shows it beside).
+        writeFileAtomic((dir / "reference.txt").string(), fs::relative(reference->path, dir).string() + "\n");
+    }
+    writeFileAtomic((dir / "result.csv").string(), row + "\n");
+    writeFileAtomic((dir / "done.json").string(), "{\n  \"hash\": \"" + task.hash + "\",\n  \"iterations\": " +
+                                                      std::to_string(done) + ",\n  \"wall_seconds\": " + number(wall) +
+                                                      "\n}\n");
+}
+
+} // namespace bl

@@ -1,0 +1,39 @@
+// Runs one task of an experiment into DIR/tasks/<id>/: task.json (resolved config), checkpoint
+// EXRs, metrics.csv (iteration, wall s, GPU ms, every metric against the reference), passes.csv,
+// environment.json, final.{exr,png,pfm}, result.csv (its row of results.csv), and done.json last:
+// a task without done.json (killed mid-way) is redone from scratch on the next run.
+#pragma once
+
+#include "runner/ExperimentConfig.h"
+#include "runner/ReferenceCache.h"
+
+#include <string>
+
+namespace bl {
+
+namespace vk {
+class Context;
+}
+
+inline constexpr const char* kResultsHeader =
+    "index,id,scene,mode,label,params,seed,iterations,wall_seconds,gpu_ms,mse,rmse,relmse,smape,mae,"
+    "mean_ratio_r,mean_ratio_g,mean_ratio_b,block_ratio_rms,reference_noise_relmse,dir";
+
+class TaskRunner {
+public:
+    TaskRunner(const ExperimentConfig& config, const ReferenceCache& references, std::string outDir);
+
+    std::string directory(const Task& task) const;
+    // True when the task finished with this exact configuration (its hash).
+    bool finished(const Task& task) const;
+    // Runs the task; `gpu` must be non-null for GPU modes. Throws on failure (the task stays
+    // unfinished).
+    void run(const Task& task, vk::Context* gpu) const;
+
+private:
+    const ExperimentConfig* mConfig;
+    const ReferenceCache* mReferences;
+    std::string mOutDir;
+};
+
+} // namespace bl
