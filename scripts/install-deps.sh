@@ -12,8 +12,8 @@ packages=(
     libcli11-dev libtinyobjloader-dev
     # CPU reference path tracer
     libembree-dev libtbb-dev
-    # Tests, benchmarks, plots
-    libgtest-dev libgmock-dev libbenchmark-dev python3-matplotlib
+    # Tests, benchmarks, plots, and headless Chromium for the report's browser test
+    libgtest-dev libgmock-dev libbenchmark-dev python3-matplotlib python3-numpy chromium
 )
 
 missing=()

@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# runner_test.sh CASE BUNDLELAB OUTDIR: end-to-end tests of `bundlelab run` and `bundlelab report`.
+set -uo pipefail
+case_name=$1
+bl=$2
+out=$3/$case_name
+config=tests/experiments/tiny.toml
+rm -rf "$out" && mkdir -p "$out"
+fail() { echo "FAIL: $*"; exit 1; }
+count_done() { ls "$out"/results/tasks/*/done.json 2>/dev/null | wc -l; }
+
+case "$case_name" in
+resume)
+    "$bl" run "$config" --out "$out/results" >"$out/first.txt" 2>&1 || { cat "$out/first.txt"; fail "first run"; }
+    [[ $(count_done) -eq 8 ]] || fail "expected 8 finished tasks, got $(count_done)"
+    [[ $(wc -l <"$out/results/results.csv") -eq 9 ]] || fail "results.csv should have 8 rows"
+    for f in task.json metrics.csv passes.csv environment.json final.exr final.png final.pfm iter-1.exr; do
+        [[ -s "$out/results/tasks/0000-cornell-pt-s0/$f" ]] || fail "missing $f"
+    done
+    grep -q "^4," "$out/results/tasks/0000-cornell-pt-s0/metrics.csv" || fail "no checkpoint at iteration 4"
+    # A second run finishes at once: nothing is run again.
+    start=$(date +%s%N)
+    "$bl" run "$config" --out "$out/results" >"$out/second.txt" 2>&1 || fail "second run"
+    grep -q "8 already finished" "$out/second.txt" || { cat "$out/second.txt"; fail "finished tasks not skipped"; }
+    elapsed_ms=$(( ($(date +%s%N) - start) / 1000000 ))
+    (( elapsed_ms < 2000 )) || fail "second run took $elapsed_ms ms"
+    # A task killed mid-way (no done.json, a half-written file) is redone; nothing else is.
+    victim="$out/results/tasks/0003-cornell-raster-shadow_resolution_64-s1"
+    rm "$victim/done.json"
+    echo "garbage" >"$victim/final.exr"
+    before=$(stat -c %Y "$out/results/tasks/0000-cornell-pt-s0/done.json")
+    sleep 1
+    "$bl" run "$config" --out "$out/results" >"$out/third.txt" 2>&1 || fail "third run"
+    grep -q "7 already finished" "$out/third.txt" || { cat "$out/third.txt"; fail "expected exactly one task redone"; }
+    [[ -s "$victim/done.json" ]] || fail "killed task not redone"
+    [[ $(stat -c %Y "$out/results/tasks/0000-cornell-pt-s0/done.json") -eq $before ]] || fail "a finished task ran again"
+    [[ $(wc -l <"$out/results/results.csv") -eq 9 ]] || fail "results.csv lost rows"
+    ;;
+slices)
+    "$bl" run "$config" --out "$out/results" --task-index 1 --task-count 2 >"$out/log.txt" 2>&1 || fail "slice run"
+    [[ $(count_done) -eq 4 ]] || fail "slice 1 of 2 should run 4 tasks, ran $(count_done)"
+    [[ -s "$out/results/tasks/0001-cornell-pt-s1/done.json" ]] || fail "odd task missing"
+    [[ ! -e "$out/results/tasks/0000-cornell-pt-s0/done.json" ]] || fail "even task ran"
+    "$bl" run "$config" --out "$out/results" --task-index 0 --task-count 2 -j 2 >"$out/log2.txt" 2>&1 || fail "slice 0"
+    [[ $(count_done) -eq 8 ]] || fail "both slices should give 8 tasks"
+    ;;
+bad_config)
+    printf '[experiment]\nname = "x"\n[[scene]]\nfile = "%s/data/cornell-box/cornell.toml"\n[[mode]]\nmode = "raster"\ngrid = { shadow_resolution = [5] }\n' "$PWD" >"$out/bad.toml"
+    "$bl" run "$out/bad.toml" --out "$out/results" 2>"$out/err.txt" && fail "bad config accepted"
+    grep -q "bad.toml:7: mode 'raster' grid: parameter 'shadow_resolution' = 5 outside" "$out/err.txt" || { cat "$out/err.txt"; fail "message"; }
+    [[ ! -d "$out/results/tasks" ]] || fail "tasks started despite the bad config"
+    ;;
+report_browser)
+    "$bl" run "$config" --out "$out/results" >"$out/run.txt" 2>&1 || { cat "$out/run.txt"; fail "run"; }
+    "$bl" report "$out/results" || fail "report"
+    for f in report.html report.md plots/cornell-relmse-vs-time.png plots/cornell-relmse-vs-time.svg plots/passes.png; do
+        [[ -s "$out/results/$f" ]] || fail "missing $f"
+    done
+    chrome=$(command -v chromium || true)
+    [[ -n "$chrome" ]] || fail "chromium is not installed (scripts/install-deps.sh installs it)"
+    flags=(--headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking
+           --disable-component-update --disable-sync --user-data-dir="$out/profile" --virtual-time-budget=5000)
+    "$chrome" "${flags[@]}" --dump-dom "file://$out/results/report.html" >"$out/dom.html" 2>"$out/chrome.log"
+    grep -q 'id="bl-status" data-status="ok"' "$out/dom.html" || { grep -o 'bl-status[^<]*' "$out/dom.html"; fail "viewer did not load without errors"; }
+    grep -q "images loaded" "$out/dom.html" || fail "viewer shows no images"
+    "$chrome" "${flags[@]}" --window-size=1400,2400 --screenshot="$out/screenshot.png" "file://$out/results/report.html" 2>>"$out/chrome.log"
+    [[ -s "$out/screenshot.png" ]] || fail "no screenshot"
+    /usr/bin/python3 - "$out/screenshot.png" <<'PY' || fail "screenshot is blank"
+import sys
+import matplotlib.image as mpimg
+img = mpimg.imread(sys.argv[1])
+# A page showing plots and the viewer's canvas has many distinct colours; a blank page has one.
+colours = len({tuple((px * 255).astype(int)) for px in img[::7, ::7, :3].reshape(-1, 3)})
+print("distinct colours:", colours)
+sys.exit(0 if colours > 200 else 1)
+PY
+    echo "screenshot: $out/screenshot.png"
+    ;;
+*)
+    fail "unknown case $case_name"
+    ;;
+esac
+echo "PASS: $case_name"
