@@ -2,6 +2,7 @@
 
 #include "base/Error.h"
 #include "bundle/BundleFrame.h"
+#include "bundle/DepthMapPass.h"
 #include "sampling/PixelSamples.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
@@ -39,6 +40,9 @@ std::vector<ParamSpec> SkylightMode::parameters() {
         {kRotate, true, "", "rotate each bundle frame randomly about its direction (decorrelates aliasing)", 0, 1, {}},
         {kMemoryCap, std::int64_t{1024}, "MiB", "bundle node pool limit; beyond it bundles are built in tiles", 1,
          1 << 20, {}},
+        {kVisibility, std::string("bundle"), "",
+         "bundle: omega and -omega for every point; depth_map: a directional shadow map, omega only", 0, 0,
+         {"bundle", "depth_map"}},
     };
 }
 
@@ -50,6 +54,8 @@ struct SkylightMode::Gpu {
     std::unique_ptr<gpu::GpuScene> scene;
     std::unique_ptr<gpu::GBufferPass> gbuffer;
     std::unique_ptr<BundleBuilder> builder;
+    std::unique_ptr<DepthMapPass> depthMap; // visibility = depth_map
+    vk::GpuImage placeholder;               // r32f 1x1 bound as the depth map otherwise
     std::unique_ptr<EnvironmentLight> environment;
     std::unique_ptr<DirectionSampler> directions;
     vk::GpuImage accum;
@@ -99,6 +105,13 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     BundleBuilderOptions options;
     options.memoryCapBytes = static_cast<std::uint64_t>(mSettings.getInt(kMemoryCap)) << 20;
     g->builder = std::make_unique<BundleBuilder>(*ctx, *g->scene, options);
+    const bool depthMapVisibility = mSettings.getString(kVisibility) == "depth_map";
+    if (depthMapVisibility) {
+        g->depthMap = std::make_unique<DepthMapPass>(*ctx, *g->scene,
+                                                     static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution)));
+    } else {
+        g->placeholder = vk::GpuImage(*ctx, {1, 1, 1, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
+    }
     g->environment = std::make_unique<EnvironmentLight>(scene.environment, true);
     const DirectionSequence sequence = sequenceOf(mSettings.getString(kDirections));
     if (sequence == DirectionSequence::Importance && !scene.environment.present) {
@@ -116,7 +129,8 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
                  {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                  {3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
                  {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs}});
+                 {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs},
+                 {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
     g->pool = vk::DescriptorPool(device, 1, 8);
     g->set = g->pool.allocate(g->setLayout.get());
     vk::DescriptorWriter writer;
@@ -127,6 +141,8 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     writer.buffer(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, g->gbuffer->cameraBuffer())
         .buffer(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->materialBuffer())
         .buffer(3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, g->frame.get())
+        .image(6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, depthMapVisibility ? g->depthMap->map().view() : g->placeholder.view(),
+               VK_IMAGE_LAYOUT_GENERAL)
         .image(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->accum.view(), VK_IMAGE_LAYOUT_GENERAL)
         .image(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, g->scene->environmentView(),
                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, g->scene->environmentSampler())
@@ -140,6 +156,9 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
         VkClearColorValue zero{};
         VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         vkCmdClearColorImage(cmd, g->accum.get(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+        if (g->placeholder.get()) {
+            vk::transitionImage(cmd, g->placeholder.get(), vk::ImageTransition{});
+        }
     });
     mGpu = std::move(g);
 
@@ -197,6 +216,33 @@ void SkylightMode::iterate(const IterationInfo& info) {
     push.environmentRotation = g.scene->environmentRotation();
     push.samplePosition = sample;
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
+    auto dispatchVisibility = [&](VkCommandBuffer cmd) {
+        std::uint32_t scope = g.timer.start(cmd, "visibility");
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 1, &g.set, 0, nullptr);
+        vkCmdPushConstants(cmd, g.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdDispatch(cmd, vk::groupCount(width, shader::kSkylightGroupSize),
+                      vk::groupCount(height, shader::kSkylightGroupSize), 1);
+        g.timer.stop(cmd, scope);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    };
+    if (g.depthMap) {
+        // A shadow map serves omega only: its density is q(omega) on the sphere, not p_r.
+        push.visibility = shader::kSkylightVisibilityDepthMap;
+        push.pdfForward = g.directions->pdf(dir.omega);
+        push.addBase = 1u;
+        std::memcpy(g.frame.data(), &frame, sizeof(frame));
+        mContext->submitAndWait([&](VkCommandBuffer cmd) {
+            g.timer.begin(cmd);
+            g.depthMap->record(cmd, frame, info.time, &g.timer);
+            dispatchVisibility(cmd);
+        });
+        g.timer.collect();
+        ++mIterations;
+        return;
+    }
+    push.visibility = shader::kSkylightVisibilityBundle;
     bool first = true;
     g.lastStats = g.builder->build(frame, info.time, [&](const BuiltBundle& built) {
         std::memcpy(g.frame.data(), &built.frame, sizeof(built.frame));
@@ -206,15 +252,7 @@ void SkylightMode::iterate(const IterationInfo& info) {
         first = false;
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
-            std::uint32_t scope = g.timer.start(cmd, "visibility");
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 1, &g.set, 0, nullptr);
-            vkCmdPushConstants(cmd, g.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-            vkCmdDispatch(cmd, vk::groupCount(width, shader::kSkylightGroupSize),
-                          vk::groupCount(height, shader::kSkylightGroupSize), 1);
-            g.timer.stop(cmd, scope);
-            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                              VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+            dispatchVisibility(cmd);
         });
         g.timer.collect();
     });

@@ -17,6 +17,8 @@
 //   fit                scene     bundle frame: the scene's bounding sphere or the visible points
 //   rotate             true      random rotation of each frame about omega
 //   memory_cap_mib     1024      bundle node pool limit (beyond: tiles)
+//   visibility         bundle    bundle (omega and -omega for every point) or depth_map (a
+//                                directional shadow map: omega only; the comparison of [TO12])
 #pragma once
 
 #include "bundle/BundleBuilder.h"
@@ -37,6 +39,7 @@ public:
     static constexpr const char* kFit = "fit";
     static constexpr const char* kRotate = "rotate";
     static constexpr const char* kMemoryCap = "memory_cap_mib";
+    static constexpr const char* kVisibility = "visibility";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);

@@ -18,9 +18,14 @@ struct SkylightPush {
     float environmentRotation;
     vec2 samplePosition;   // this iteration's sub-pixel camera sample, for background rays
     uint environmentPresent;
-    uint pad0;
+    uint visibility;       // kSkylightVisibilityBundle or kSkylightVisibilityDepthMap
 };
 BL_STATIC_ASSERT(sizeof(SkylightPush) == 80, "SkylightPush layout");
+
+// Bundle: omega and -omega for every point (pdf p_r). Depth map (a directional shadow map): omega
+// only, for the points on its side (pdf q on the sphere); the others wait for another direction.
+BL_CONST uint kSkylightVisibilityBundle = 0u;
+BL_CONST uint kSkylightVisibilityDepthMap = 1u;
 
 BL_CONST uint kSkylightGroupSize = 8u;
 

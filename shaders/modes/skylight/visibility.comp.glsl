@@ -21,6 +21,7 @@ layout(set = 0, binding = 2) readonly buffer MaterialBlock { GpuMaterial materia
 layout(set = 0, binding = 3) uniform FrameBlock { BundleFrame frame; };
 layout(set = 0, binding = 4, rgba32f) uniform image2D accum;
 layout(set = 0, binding = 5) uniform sampler2D environment;
+layout(set = 0, binding = 6, r32f) uniform readonly image2D depthMap;
 layout(push_constant) uniform PushBlock { SkylightPush push; };
 
 void main() {
@@ -50,15 +51,23 @@ void main() {
         vec3 n = normalMaterial.xyz;
         float c = dot(n, frame.direction);
         float side = c >= 0.0 ? 1.0 : -1.0; // use omega or -omega, whichever is on n's side
+        bool usable = push.visibility == kSkylightVisibilityBundle || side > 0.0;
         float cosine = abs(c);
         vec3 d = side * frame.direction;
         vec3 le = side > 0.0 ? push.radianceForward : push.radianceBackward;
         float pdf = side > 0.0 ? push.pdfForward : push.pdfBackward;
-        if (cosine > 0.0 && pdf > 0.0 && dot(le, le) > 0.0) {
+        if (usable && cosine > 0.0 && pdf > 0.0 && dot(le, le) > 0.0) {
             float tangent = min(sqrt(max(0.0, 1.0 - cosine * cosine)) / cosine, kSkylightMaxTangent);
             float own = frame.depthEpsilon + kSkylightOwnSurfacePixels * frame.pixelSize * tangent;
-            uint head = blBundleHead(BundleHeads(push.headAddress), frame, bundlePixel);
-            bool occluded = blBundleNearest(BundleNodes(push.nodeAddress), head, depth, side, own, frame) != kBundleNil;
+            bool occluded;
+            if (push.visibility == kSkylightVisibilityBundle) {
+                uint head = blBundleHead(BundleHeads(push.headAddress), frame, bundlePixel);
+                occluded = blBundleNearest(BundleNodes(push.nodeAddress), head, depth, side, own, frame) != kBundleNil;
+            } else {
+                // The map keeps the surface nearest the light: anything beyond the point's own
+                // surface along omega occludes it (no face test: a shadow map has no faces).
+                occluded = imageLoad(depthMap, bundlePixel).r > depth + own;
+            }
             if (!occluded) {
                 GpuMaterial m = materials[uint(normalMaterial.w)];
                 vec3 albedo = imageLoad(gbuffer[kGBufferAlbedo], pixel).rgb;

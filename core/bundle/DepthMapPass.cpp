@@ -1,0 +1,74 @@
+#include "bundle/DepthMapPass.h"
+
+#include "vk/Commands.h"
+
+#include <bundle/build.vert.spv.h>
+#include <bundle/depth_map.frag.spv.h>
+#include <cstring>
+#include <limits>
+
+namespace bl {
+
+namespace {
+constexpr VkFormat kMapFormat = VK_FORMAT_R32_SFLOAT;
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+} // namespace
+
+DepthMapPass::DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, std::uint32_t resolution)
+    : mScene(&scene), mResolution(resolution) {
+    VkDevice device = ctx.device();
+    mMap = vk::GpuImage(ctx, {resolution, resolution, 1, kMapFormat,
+                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT});
+    mDepth = vk::GpuImage(ctx, {resolution, resolution, 1, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
+    mFrame = vk::Buffer(ctx, sizeof(shader::BundleFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
+    const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    mSetLayout = vk::makeDescriptorSetLayout(device, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, stages}});
+    mPool = vk::DescriptorPool(device, 1, 2);
+    mSet = mPool.allocate(mSetLayout.get());
+    vk::DescriptorWriter().buffer(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, mFrame.get()).update(device, mSet);
+    VkDescriptorSetLayout layouts[] = {mSetLayout.get()};
+    mPipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BundleBuildPush),
+                                             stages | VK_SHADER_STAGE_COMPUTE_BIT);
+    vk::GraphicsPipelineDesc desc;
+    desc.vertexShader = kSpv_bundle_build_vert;
+    desc.fragmentShader = kSpv_bundle_depth_map_frag;
+    desc.vertexBindings = gpu::GpuScene::vertexBindings();
+    desc.vertexAttributes = gpu::GpuScene::vertexAttributes();
+    desc.colorFormats = {kMapFormat};
+    desc.depthFormat = kDepthFormat;
+    desc.depthCompare = VK_COMPARE_OP_GREATER; // largest depth along omega: nearest to the light
+    desc.layout = mPipelineLayout.get();
+    mPipeline = vk::makeGraphicsPipeline(device, desc);
+}
+
+void DepthMapPass::record(VkCommandBuffer cmd, const shader::BundleFrame& frame, double time, vk::GpuTimer* timer) {
+    std::memcpy(mFrame.data(), &frame, sizeof(frame));
+    std::uint32_t scope = timer ? timer->start(cmd, "depth map") : 0;
+    vk::transitionImage(cmd, mMap.get(), vk::toColorAttachment());
+    vk::transitionImage(cmd, mDepth.get(), vk::toDepthAttachment());
+    vk::RenderTargets targets;
+    targets.colors = {mMap.view()};
+    targets.clearColor = {{-std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f}};
+    targets.depth = mDepth.view();
+    targets.clearDepth = 0.0f;
+    targets.extent = {frame.width, frame.height};
+    vk::beginRendering(cmd, targets);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipeline.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipelineLayout.get(), 0, 1, &mSet, 0, nullptr);
+    mScene->bindGeometry(cmd);
+    shader::BundleBuildPush push{};
+    for (const gpu::GpuDraw& d : mScene->draws()) {
+        push.model = mScene->modelMatrix(d.mesh, time);
+        vkCmdPushConstants(cmd, mPipelineLayout.get(),
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                           sizeof(push), &push);
+        vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
+    }
+    vkCmdEndRendering(cmd);
+    vk::transitionImage(cmd, mMap.get(), vk::colorAttachmentToGeneral());
+    if (timer) {
+        timer->stop(cmd, scope);
+    }
+}
+
+} // namespace bl
