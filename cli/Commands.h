@@ -19,6 +19,7 @@ void addStatsCommand(CLI::App& app, Action& action);
 void addReplayCommand(CLI::App& app, Action& action);
 void addBenchCommand(CLI::App& app, Action& action);
 void addRunCommand(CLI::App& app, Action& action);
+void addAtlasCommand(CLI::App& app, Action& action);
 void addReportCommand(CLI::App& app, Action& action);
 
 } // namespace bl::cli

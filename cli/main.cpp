@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
     bl::cli::addReplayCommand(app, action);
     bl::cli::addBenchCommand(app, action);
     bl::cli::addRunCommand(app, action);
+    bl::cli::addAtlasCommand(app, action);
     bl::cli::addReportCommand(app, action);
     try {
         app.parse(argc, argv);

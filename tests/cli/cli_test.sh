@@ -84,6 +84,17 @@ validation_clean)
         --set shadow_resolution=128 --out "$out/s.exr" 2>"$out/stderr.txt" || { cat "$out/stderr.txt"; fail "render failed"; }
     if grep -q "validation" "$out/stderr.txt"; then cat "$out/stderr.txt"; fail "validation messages"; fi
     ;;
+atlas_report)
+    "$bl" atlas data/cornell-box/cornell.toml --size 256 --out "$out/atlas.png" --report "$out/atlas.json" \
+        || fail "atlas failed"
+    [[ -s "$out/atlas.png" ]] || fail "no chart image"
+    for key in utilization charts mean_stretch max_stretch flipped_triangles overlapping_texels \
+               uncovered_triangles seconds; do
+        grep -q "\"$key\": " "$out/atlas.json" || fail "report lacks $key"
+    done
+    grep -q '"charts": 16' "$out/atlas.json" || fail "the Cornell box should give 16 charts"
+    grep -q '"overlapping_texels": 0' "$out/atlas.json" || fail "overlapping texels"
+    ;;
 *)
     fail "unknown case $case_name"
     ;;

@@ -1,0 +1,404 @@
+#include "atlas/Atlas.h"
+
+#include "atlas/Packing.h"
+#include "base/Error.h"
+#include "base/Log.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace bl::atlas {
+
+namespace {
+
+glm::vec3 corner(const Mesh& m, std::uint32_t f, int k) { return m.positions[m.triangles[f][k]]; }
+
+// Flattens a face set, splitting it (in halves along its longest axis, then into connected
+// parts) while the map flips a triangle or stretches beyond the bound.
+void flattenSplitting(const Mesh& mesh, std::uint32_t meshIndex, const std::vector<std::uint32_t>& welded,
+                      const std::vector<std::uint32_t>& faces, float maxStretch, std::vector<FlatChart>& out) {
+    FlatChart c = flatten(mesh, meshIndex, faces, welded);
+    if ((c.flipped == 0 && c.stretch <= maxStretch) || faces.size() == 1) {
+        out.push_back(std::move(c));
+        return;
+    }
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+    std::vector<glm::vec3> centroid(faces.size());
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+        centroid[i] = (corner(mesh, faces[i], 0) + corner(mesh, faces[i], 1) + corner(mesh, faces[i], 2)) / 3.0f;
+        lo = glm::min(lo, centroid[i]);
+        hi = glm::max(hi, centroid[i]);
+    }
+    const glm::vec3 e = hi - lo;
+    const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+    std::vector<std::size_t> order(faces.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::nth_element(order.begin(), order.begin() + order.size() / 2, order.end(),
+                     [&](std::size_t a, std::size_t b) { return centroid[a][axis] < centroid[b][axis]; });
+    std::vector<std::uint32_t> halves[2];
+    for (std::size_t k = 0; k < order.size(); ++k) halves[k < order.size() / 2 ? 0 : 1].push_back(faces[order[k]]);
+    for (const std::vector<std::uint32_t>& half : halves) {
+        for (const std::vector<std::uint32_t>& part : connectedComponents(mesh, welded, half)) {
+            flattenSplitting(mesh, meshIndex, welded, part, maxStretch, out);
+        }
+    }
+}
+
+// Does triangle (a, b, c) overlap the unit square at (x, y)? Separating axes: the square's
+// (covered by iterating the triangle's bounding box) and the triangle's edge normals.
+bool overlapsTexel(const glm::vec2 p[3], float x, float y) {
+    const glm::vec2 corners[4] = {{x, y}, {x + 1, y}, {x, y + 1}, {x + 1, y + 1}};
+    for (int k = 0; k < 3; ++k) {
+        glm::vec2 e = p[(k + 1) % 3] - p[k];
+        glm::vec2 n(-e.y, e.x);
+        float t0 = glm::dot(n, p[k]), t1 = glm::dot(n, p[(k + 2) % 3]);
+        float tmin = std::min(t0, t1), tmax = std::max(t0, t1);
+        float smin = std::numeric_limits<float>::max(), smax = std::numeric_limits<float>::lowest();
+        for (const glm::vec2& c : corners) {
+            float s = glm::dot(n, c);
+            smin = std::min(smin, s);
+            smax = std::max(smax, s);
+        }
+        if (smax < tmin || smin > tmax) return false;
+    }
+    return true;
+}
+
+// Closest point of triangle p to q, as barycentrics (Ericson, Real-Time Collision Detection 5.1.5).
+glm::vec3 closestBarycentric(const glm::vec2 p[3], glm::vec2 q) {
+    const glm::vec2 a = p[0], b = p[1], c = p[2];
+    glm::vec2 ab = b - a, ac = c - a, ap = q - a;
+    float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
+    glm::vec2 bp = q - b;
+    float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
+    float vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        float v = d1 / (d1 - d3);
+        return {1 - v, v, 0};
+    }
+    glm::vec2 cp = q - c;
+    float d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
+    float vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        float w = d2 / (d2 - d6);
+        return {1 - w, 0, w};
+    }
+    float va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+        float w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return {0, 1 - w, w};
+    }
+    float denom = 1.0f / (va + vb + vc);
+    float v = vb * denom, w = vc * denom;
+    return {1 - v - w, v, w};
+}
+
+struct TexelOwner {
+    std::int32_t chart = -1;
+    std::int32_t face = -1; // index within the chart
+    float distance = std::numeric_limits<float>::max();
+    glm::vec3 bary{0.0f};
+    std::int32_t otherChart = -1; // a second chart touching it: an overlap
+};
+
+// Rounds of giving texel-less triangles charts of their own before reporting them uncovered.
+constexpr int kCoverageRounds = 8;
+
+// Scales and places the oriented charts: the densest packing into options.size^2 (binary search),
+// or options.texelsPerUnit in the smallest power-of-two atlas that holds it. Returns the density;
+// uv become atlas texel coordinates.
+float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, int& width, int& height,
+                float previousDensity) {
+    double area = 0.0;
+    for (const FlatChart& c : charts) {
+        for (std::size_t i = 0; i < c.faces.size(); ++i) {
+            const glm::vec2 a = c.uv[3 * i], b = c.uv[3 * i + 1], d = c.uv[3 * i + 2];
+            area += 0.5 * std::abs((b.x - a.x) * (d.y - a.y) - (d.x - a.x) * (b.y - a.y));
+        }
+    }
+    if (!(area > 0.0)) {
+        throw Error("atlas: the scene has no surface area");
+    }
+    std::vector<glm::vec2> offsets;
+    std::vector<int> turns;
+    float density = options.texelsPerUnit;
+    if (density > 0.0f) {
+        for (width = 64; !packCharts(charts, density, width, width, options.padding, offsets, turns); width *= 2) {
+            if (width >= 16384) throw Error("atlas: " + std::to_string(density) + " texels per unit need over 16384^2");
+        }
+        height = width;
+    } else if (previousDensity > 0.0f) {
+        // A repack after a few charts were added: the density hardly moves, so step down from it.
+        width = height = options.size;
+        density = previousDensity;
+        while (density > 0.0f && !packCharts(charts, density, width, height, options.padding, offsets, turns)) {
+            density *= 0.98f;
+        }
+    } else {
+        width = height = options.size;
+        if (width < 16 || width > 16384) throw Error("atlas: size " + std::to_string(width) + " outside [16, 16384]");
+        // Binary search to 0.1% of the upper bound (every texel covered).
+        double lo = 0.0, hi = std::sqrt(double(width) * height / area);
+        for (int i = 0; i < 12; ++i) {
+            double mid = 0.5 * (lo + hi);
+            (packCharts(charts, float(mid), width, height, options.padding, offsets, turns) ? lo : hi) = mid;
+        }
+        density = float(lo);
+        if (!(density > 0.0f) || !packCharts(charts, density, width, height, options.padding, offsets, turns)) {
+            throw Error("atlas: " + std::to_string(charts.size()) + " charts do not fit in " + std::to_string(width) +
+                        "^2 texels with " + std::to_string(options.padding) + " texels padding");
+        }
+    }
+    for (std::size_t c = 0; c < charts.size(); ++c) {
+        glm::vec2 extent(0.0f);
+        for (const glm::vec2& q : charts[c].uv) extent = glm::max(extent, q);
+        for (glm::vec2& q : charts[c].uv) q = turnChart(q, turns[c], extent) * density + offsets[c];
+    }
+    return density;
+}
+
+// Conservative coverage of every placed triangle, each texel's sample and owner, and the
+// triangles left owning no texel (after taking texels from triangles that own several).
+std::vector<std::pair<std::size_t, std::size_t>> coverTexels(const std::vector<FlatChart>& charts, int width,
+                                                             int height, std::vector<TexelOwner>& owner,
+                                                             std::map<std::pair<int, int>, int>& owned) {
+    owner.assign(std::size_t(width) * height, TexelOwner{});
+    owned.clear();
+    for (std::size_t c = 0; c < charts.size(); ++c) {
+        const FlatChart& chart = charts[c];
+        for (std::size_t i = 0; i < chart.faces.size(); ++i) {
+            const glm::vec2 p[3] = {chart.uv[3 * i], chart.uv[3 * i + 1], chart.uv[3 * i + 2]};
+            const glm::vec2 lo = glm::min(p[0], glm::min(p[1], p[2])), hi = glm::max(p[0], glm::max(p[1], p[2]));
+            const int x0 = std::max(0, int(std::floor(lo.x))), x1 = std::min(width - 1, int(std::floor(hi.x)));
+            const int y0 = std::max(0, int(std::floor(lo.y))), y1 = std::min(height - 1, int(std::floor(hi.y)));
+            for (int y = y0; y <= y1; ++y) {
+                for (int x = x0; x <= x1; ++x) {
+                    if (!overlapsTexel(p, float(x), float(y))) continue;
+                    const glm::vec2 centre(x + 0.5f, y + 0.5f);
+                    const glm::vec3 b = closestBarycentric(p, centre);
+                    const float d = glm::distance(b.x * p[0] + b.y * p[1] + b.z * p[2], centre);
+                    TexelOwner& o = owner[std::size_t(y) * width + x];
+                    if (o.chart >= 0 && o.chart != int(c)) o.otherChart = int(c);
+                    if (d < o.distance) {
+                        if (o.chart >= 0 && o.chart != int(c)) o.otherChart = o.chart;
+                        o.chart = int(c);
+                        o.face = int(i);
+                        o.distance = d;
+                        o.bary = b;
+                    }
+                }
+            }
+        }
+    }
+    for (const TexelOwner& o : owner) {
+        if (o.chart >= 0) ++owned[{o.chart, o.face}];
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> uncovered;
+    for (std::size_t c = 0; c < charts.size(); ++c) {
+        const FlatChart& chart = charts[c];
+        for (std::size_t i = 0; i < chart.faces.size(); ++i) {
+            if (owned.count({int(c), int(i)})) continue;
+            const glm::vec2 p[3] = {chart.uv[3 * i], chart.uv[3 * i + 1], chart.uv[3 * i + 2]};
+            const glm::vec2 lo = glm::min(p[0], glm::min(p[1], p[2])), hi = glm::max(p[0], glm::max(p[1], p[2]));
+            bool taken = false;
+            for (int y = std::max(0, int(std::floor(lo.y))); !taken && y <= std::min(height - 1, int(std::floor(hi.y))); ++y) {
+                for (int x = std::max(0, int(std::floor(lo.x))); !taken && x <= std::min(width - 1, int(std::floor(hi.x))); ++x) {
+                    TexelOwner& o = owner[std::size_t(y) * width + x];
+                    if (o.chart != int(c) || !overlapsTexel(p, float(x), float(y))) continue;
+                    int& count = owned[{o.chart, o.face}];
+                    if (count <= 1) continue;
+                    --count;
+                    const glm::vec2 centre(x + 0.5f, y + 0.5f);
+                    o.face = int(i);
+                    o.bary = closestBarycentric(p, centre);
+                    o.distance = glm::distance(o.bary.x * p[0] + o.bary.y * p[1] + o.bary.z * p[2], centre);
+                    owned[{int(c), int(i)}] = 1;
+                    taken = true;
+                }
+            }
+            if (!taken) uncovered.emplace_back(c, i);
+        }
+    }
+    return uncovered;
+}
+
+} // namespace
+
+Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    Atlas atlas;
+    AtlasStats& st = atlas.stats;
+
+    // 1. Charts, flattened and split until valid.
+    std::vector<std::vector<std::uint32_t>> welded(scene.meshes.size());
+    for (std::uint32_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
+        st.triangles += mesh.triangles.size();
+        std::uint32_t distinct = 0;
+        welded[m] = weldVertices(mesh, distinct);
+        ChartingStats cs;
+        for (const ChartFaces& c : growCharts(mesh, m, options.coneDegrees, cs)) {
+            for (const std::vector<std::uint32_t>& part : connectedComponents(mesh, welded[m], c.faces)) {
+                flattenSplitting(mesh, m, welded[m], part, options.maxStretch, atlas.charts);
+            }
+        }
+        st.nonManifoldFaces += cs.nonManifoldFaces;
+        st.degenerateFaces += cs.degenerateFaces;
+    }
+    orientCharts(atlas.charts);
+
+    // 2-3. Pack, then cover texels. Triangles left without a texel of their own (sub-texel
+    // slivers crowded by their neighbours) move to charts of their own, which always own the
+    // texels they touch, and the atlas is packed again.
+    std::vector<FlatChart> oriented = atlas.charts;
+    std::vector<TexelOwner> owner;
+    std::map<std::pair<int, int>, int> owned;
+    int width = options.size, height = options.size;
+    float density = 0.0f;
+    for (int round = 0;; ++round) {
+        atlas.charts = oriented;
+        density = packAtlas(atlas.charts, options, width, height, density);
+        std::vector<std::pair<std::size_t, std::size_t>> uncovered = coverTexels(atlas.charts, width, height, owner, owned);
+        if (uncovered.empty() || round == kCoverageRounds) {
+            st.uncoveredTriangles = uncovered.size();
+            break;
+        }
+        log::debug("atlas: " + std::to_string(uncovered.size()) + " triangles own no texel; giving them charts of their own");
+        std::map<std::size_t, std::vector<std::size_t>> byChart;
+        for (auto [c, i] : uncovered) byChart[c].push_back(i);
+        std::vector<FlatChart> singles;
+        for (auto& [c, faces] : byChart) {
+            FlatChart& chart = oriented[c];
+            std::sort(faces.rbegin(), faces.rend());
+            for (std::size_t i : faces) {
+                const std::uint32_t f = chart.faces[i];
+                singles.push_back(flatten(scene.meshes[chart.mesh], chart.mesh, {f}, welded[chart.mesh]));
+                chart.faces.erase(chart.faces.begin() + std::ptrdiff_t(i));
+                chart.uv.erase(chart.uv.begin() + std::ptrdiff_t(3 * i), chart.uv.begin() + std::ptrdiff_t(3 * i + 3));
+            }
+        }
+        std::erase_if(oriented, [](const FlatChart& c) { return c.faces.empty(); });
+        oriented.insert(oriented.end(), singles.begin(), singles.end());
+        orientCharts(oriented);
+    }
+    atlas.texelsPerUnit = density;
+    TexelMaps& maps = atlas.maps;
+    maps.width = width;
+    maps.height = height;
+    const std::size_t texels = std::size_t(width) * height;
+
+    // 4. Maps from the owners.
+    maps.position.assign(texels, glm::vec3(0.0f));
+    maps.normal.assign(texels, glm::vec3(0.0f));
+    maps.material.assign(texels, 0);
+    maps.emission.assign(texels, glm::vec3(0.0f));
+    maps.area.assign(texels, 0.0f);
+    maps.valid.assign(texels, 0);
+    maps.chart.assign(texels, -1);
+    std::size_t covered = 0;
+    for (std::size_t t = 0; t < texels; ++t) {
+        const TexelOwner& o = owner[t];
+        st.overlappingTexels += o.otherChart >= 0;
+        if (o.chart < 0) continue;
+        const FlatChart& chart = atlas.charts[o.chart];
+        const Mesh& mesh = scene.meshes[chart.mesh];
+        const std::uint32_t f = chart.faces[o.face];
+        const glm::uvec3& tri = mesh.triangles[f];
+        maps.position[t] = o.bary.x * mesh.positions[tri.x] + o.bary.y * mesh.positions[tri.y] + o.bary.z * mesh.positions[tri.z];
+        glm::vec3 n = o.bary.x * mesh.normals[tri.x] + o.bary.y * mesh.normals[tri.y] + o.bary.z * mesh.normals[tri.z];
+        maps.normal[t] = glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 0, 1);
+        maps.material[t] = mesh.material;
+        maps.emission[t] = mesh.emission;
+        const float a3 = 0.5f * glm::length(glm::cross(mesh.positions[tri.y] - mesh.positions[tri.x],
+                                                       mesh.positions[tri.z] - mesh.positions[tri.x]));
+        maps.area[t] = a3 / float(owned[{o.chart, o.face}]);
+        maps.valid[t] = 1;
+        maps.chart[t] = o.chart;
+        ++covered;
+    }
+    // One ring of dilation, so bilinear lookups at chart borders never read empty texels.
+    std::vector<std::uint8_t> before = maps.valid;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t t = std::size_t(y) * width + x;
+            if (before[t]) continue;
+            for (int dy = -1; dy <= 1 && !maps.valid[t]; ++dy) {
+                for (int dx = -1; dx <= 1 && !maps.valid[t]; ++dx) {
+                    const int nx = x + dx, ny = y + dy;
+                    if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+                    const std::size_t s = std::size_t(ny) * width + nx;
+                    if (before[s] != 1) continue;
+                    maps.position[t] = maps.position[s];
+                    maps.normal[t] = maps.normal[s];
+                    maps.material[t] = maps.material[s];
+                    maps.emission[t] = maps.emission[s];
+                    maps.chart[t] = maps.chart[s];
+                    maps.valid[t] = 2;
+                }
+            }
+        }
+    }
+
+    // 5. Per-vertex atlas uvs (vertices split where charts meet) and the statistics.
+    atlas.meshes.resize(scene.meshes.size());
+    std::vector<std::map<std::pair<std::uint32_t, std::size_t>, std::uint32_t>> vertexOf(scene.meshes.size());
+    double stretchWeighted = 0.0, areaTotal = 0.0;
+    for (std::size_t c = 0; c < atlas.charts.size(); ++c) {
+        const FlatChart& chart = atlas.charts[c];
+        const Mesh& mesh = scene.meshes[chart.mesh];
+        Mesh& out = atlas.meshes[chart.mesh];
+        double chartArea = 0.0;
+        for (std::size_t i = 0; i < chart.faces.size(); ++i) {
+            const glm::uvec3& tri = mesh.triangles[chart.faces[i]];
+            chartArea += 0.5 * glm::length(glm::cross(mesh.positions[tri.y] - mesh.positions[tri.x],
+                                                      mesh.positions[tri.z] - mesh.positions[tri.x]));
+            glm::uvec3 split;
+            for (int k = 0; k < 3; ++k) {
+                auto [it, inserted] = vertexOf[chart.mesh].try_emplace({tri[k], c}, std::uint32_t(out.positions.size()));
+                if (inserted) {
+                    out.positions.push_back(mesh.positions[tri[k]]);
+                    out.normals.push_back(mesh.normals[tri[k]]);
+                    out.uvs.push_back(chart.uv[3 * i + k] / glm::vec2(float(width), float(height)));
+                }
+                split[k] = it->second;
+            }
+            out.triangles.push_back(split);
+        }
+        stretchWeighted += chart.stretch * chartArea;
+        areaTotal += chartArea;
+        st.maxStretch = std::max(st.maxStretch, double(chart.stretch));
+        st.flippedTriangles += chart.flipped;
+    }
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        Mesh& out = atlas.meshes[m];
+        out.name = scene.meshes[m].name;
+        out.material = scene.meshes[m].material;
+        out.emission = scene.meshes[m].emission;
+        out.animation = scene.meshes[m].animation;
+    }
+    st.charts = atlas.charts.size();
+    st.meanStretch = areaTotal > 0.0 ? stretchWeighted / areaTotal : 1.0;
+    st.utilization = double(covered) / double(texels);
+    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return atlas;
+}
+
+Image chartImage(const TexelMaps& maps) {
+    Image img(maps.width, maps.height);
+    for (std::size_t t = 0; t < maps.valid.size(); ++t) {
+        if (!maps.valid[t]) continue;
+        std::uint32_t h = std::uint32_t(maps.chart[t]) * 2654435761u;
+        glm::vec3 c(float((h >> 8) & 255) / 255.0f, float((h >> 16) & 255) / 255.0f, float((h >> 24) & 255) / 255.0f);
+        c = 0.25f + 0.75f * c;
+        img.pixels()[t] = maps.valid[t] == 1 ? c : 0.3f * c;
+    }
+    return img;
+}
+
+} // namespace bl::atlas

@@ -1,0 +1,69 @@
+// The texture atlas of a scene, the discretization of the `atlas` mode (Hermes et al. 2010,
+// EQUATIONS.md section 4): charts (core/atlas/Charting.h), flattened (Parameterization.h),
+// packed (Packing.h), and per-texel maps of the whole scene.
+//
+// Coverage: every texel a triangle touches is covered (conservatively, in software: lavapipe has no
+// conservative rasterization); its sample point is the texel centre when that lies on a triangle,
+// else the nearest point of the nearest touching triangle. Every triangle owns at least one texel
+// where possible (texels are taken from triangles that own several). One ring of empty texels
+// around each chart is filled from its neighbour (validity 2) so bilinear lookups never read empty
+// texels.
+#pragma once
+
+#include "atlas/Charting.h"
+#include "atlas/Parameterization.h"
+#include "scene/Scene.h"
+
+#include <string>
+#include <vector>
+
+namespace bl::atlas {
+
+struct AtlasOptions {
+    int size = 2048;             // atlas side in texels (when texelsPerUnit is 0)
+    float texelsPerUnit = 0.0f;  // fixed density instead: the atlas grows to fit it
+    int padding = 2;             // texels between charts
+    float coneDegrees = 45.0f;   // charting normal cone
+    float maxStretch = 1.5f;     // charts above this L2 stretch are split
+};
+
+struct AtlasStats {
+    double utilization = 0.0; // covered texels / all texels
+    std::size_t charts = 0;
+    double meanStretch = 0.0; // area-weighted L2 stretch
+    double maxStretch = 0.0;  // worst chart
+    std::size_t flippedTriangles = 0;
+    std::size_t overlappingTexels = 0; // touched by two charts
+    std::size_t uncoveredTriangles = 0; // owning no texel
+    std::size_t triangles = 0;
+    std::size_t nonManifoldFaces = 0;
+    std::size_t degenerateFaces = 0;
+    double seconds = 0.0;
+};
+
+struct TexelMaps {
+    int width = 0;
+    int height = 0;
+    std::vector<glm::vec3> position;
+    std::vector<glm::vec3> normal;
+    std::vector<std::uint32_t> material;
+    std::vector<glm::vec3> emission;
+    std::vector<float> area;          // world area the texel stands for
+    std::vector<std::uint8_t> valid;  // 0 empty, 1 covered, 2 dilated from a neighbour
+    std::vector<std::int32_t> chart;  // owning chart, -1 empty
+};
+
+struct Atlas {
+    float texelsPerUnit = 0.0f;
+    std::vector<FlatChart> charts;     // uv in texel units of the atlas after packing
+    std::vector<Mesh> meshes;          // the scene's meshes with atlas uvs in [0,1]^2, vertices split on seams
+    TexelMaps maps;
+    AtlasStats stats;
+};
+
+Atlas buildAtlas(const Scene& scene, const AtlasOptions& options);
+
+// The charts in colour (dilated texels darker, empty black), for `bundlelab atlas --out`.
+Image chartImage(const TexelMaps& maps);
+
+} // namespace bl::atlas

@@ -1,0 +1,105 @@
+// The texture atlas: invariants that the `atlas` mode's accuracy rests on (no flips, no texel
+// shared by two charts, every triangle owning a texel, bounded stretch, texel samples on their
+// surfaces, texel areas summing to the surface area) on the Cornell box, a scanned bunny and a
+// deliberately broken mesh.
+#include "atlas/Atlas.h"
+#include "scene/SceneLoader.h"
+#include "support/TestFiles.h"
+
+#include <gtest/gtest.h>
+
+using namespace bl;
+using namespace bl::atlas;
+
+namespace {
+
+double surfaceArea(const Scene& s) {
+    double a = 0.0;
+    for (const Mesh& m : s.meshes) {
+        for (const glm::uvec3& t : m.triangles) {
+            a += 0.5 * glm::length(glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]));
+        }
+    }
+    return a;
+}
+
+void expectInvariants(const Scene& scene, const Atlas& a, double maxStretch) {
+    EXPECT_EQ(a.stats.flippedTriangles, 0u);
+    EXPECT_EQ(a.stats.overlappingTexels, 0u);
+    EXPECT_EQ(a.stats.uncoveredTriangles, 0u);
+    EXPECT_LE(a.stats.maxStretch, maxStretch);
+    EXPECT_GE(a.stats.meanStretch, 0.999);
+    // Texel areas add up to the surface they stand for.
+    double area = 0.0;
+    std::size_t covered = 0;
+    for (std::size_t t = 0; t < a.maps.valid.size(); ++t) {
+        if (a.maps.valid[t] != 1) continue;
+        area += a.maps.area[t];
+        ++covered;
+        EXPECT_NEAR(glm::length(a.maps.normal[t]), 1.0f, 1e-4f);
+    }
+    EXPECT_NEAR(area, surfaceArea(scene), 1e-3 * surfaceArea(scene));
+    EXPECT_NEAR(double(covered) / double(a.maps.valid.size()), a.stats.utilization, 1e-12);
+    // Atlas uvs: one per split vertex, inside [0, 1], and as many triangles as the scene.
+    std::size_t triangles = 0;
+    for (const Mesh& m : a.meshes) {
+        triangles += m.triangles.size();
+        for (const glm::vec2& uv : m.uvs) {
+            EXPECT_GE(uv.x, 0.0f);
+            EXPECT_LE(uv.x, 1.0f);
+            EXPECT_GE(uv.y, 0.0f);
+            EXPECT_LE(uv.y, 1.0f);
+        }
+    }
+    EXPECT_EQ(triangles, scene.triangleCount());
+}
+
+} // namespace
+
+TEST(Atlas, CornellBoxEachWallOneChart) {
+    Scene s = loadScene(bl::test::sourcePath("data/cornell-box/cornell.toml"));
+    AtlasOptions o;
+    o.size = 512;
+    Atlas a = buildAtlas(s, o);
+    // Floor, ceiling, three walls, the light, and five faces for each block: all planar quads.
+    EXPECT_EQ(a.stats.charts, 16u);
+    EXPECT_NEAR(a.stats.maxStretch, 1.0, 1e-4);
+    expectInvariants(s, a, 1.0001);
+    // Every covered texel's sample lies on the surface of its mesh: inside the box.
+    const Bounds b = s.bounds();
+    for (std::size_t t = 0; t < a.maps.valid.size(); ++t) {
+        if (!a.maps.valid[t]) continue;
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_GE(a.maps.position[t][k], b.lo[k] - 1e-3f);
+            EXPECT_LE(a.maps.position[t][k], b.hi[k] + 1e-3f);
+        }
+    }
+    // The light's texels carry its emission.
+    std::size_t emitting = 0;
+    for (std::size_t t = 0; t < a.maps.valid.size(); ++t) emitting += a.maps.valid[t] == 1 && a.maps.emission[t].x == 17.0f;
+    EXPECT_GT(emitting, 0u);
+}
+
+TEST(Atlas, ScannedBunny) {
+    Scene s = loadScene(bl::test::sharedPath("data/bunny/stanford/bun_zipper_res2.ply"));
+    AtlasOptions o;
+    o.size = 1024;
+    Atlas a = buildAtlas(s, o);
+    expectInvariants(s, a, 2.0);
+    EXPECT_GT(a.stats.charts, 10u);
+    // Measured 0.5-0.6 on the scans (the 0.70 target is not reached yet): a floor against regressions.
+    EXPECT_GT(a.stats.utilization, 0.45);
+}
+
+TEST(Atlas, BrokenMeshIsHandledAndCounted) {
+    // A fan of three triangles on one edge (non-manifold), a duplicate vertex, a zero-area
+    // triangle, a flipped neighbour and an isolated triangle.
+    std::string obj = bl::test::writeTempFile("broken.obj",
+                                              "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 1 0 0\nv 2 0 0\n"
+                                              "v 5 5 5\nv 6 5 5\nv 5 6 5\n"
+                                              "f 1 2 3\nf 2 1 4\nf 1 2 5\nf 6 7 2\nf 8 9 10\nf 3 6 1\n");
+    Scene s = loadScene(obj);
+    Atlas a = buildAtlas(s, AtlasOptions{256});
+    EXPECT_GE(a.stats.nonManifoldFaces, 1u);
+    expectInvariants(s, a, 2.0);
+}
