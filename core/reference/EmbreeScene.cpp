@@ -21,6 +21,31 @@ void onEmbreeError(void*, RTCError code, const char* message) {
 }
 
 float maxAbs(const glm::vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+RTCRay makeRay(const glm::vec3& origin, const glm::vec3& direction, float tMax) {
+    RTCRay ray;
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.dir_x = direction.x;
+    ray.dir_y = direction.y;
+    ray.dir_z = direction.z;
+    ray.tnear = 0.0f;
+    ray.tfar = tMax;
+    ray.time = 0.0f;
+    ray.mask = ~0u;
+    ray.id = 0;
+    ray.flags = 0;
+    return ray;
+}
+
+RTCRayHit makeRayHit(const glm::vec3& origin, const glm::vec3& direction, float tMax) {
+    RTCRayHit rh;
+    rh.ray = makeRay(origin, direction, tMax);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+}
 } // namespace
 
 EmbreeScene::EmbreeScene(const Scene& scene, double time) : mScene(&scene) {
@@ -93,21 +118,7 @@ glm::vec3 EmbreeScene::offsetOrigin(const glm::vec3& p, const glm::vec3& normal,
 bool EmbreeScene::intersect(const glm::vec3& origin, const glm::vec3& direction, float tMax, SurfaceHit& hit) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit rh;
-    rh.ray.org_x = origin.x;
-    rh.ray.org_y = origin.y;
-    rh.ray.org_z = origin.z;
-    rh.ray.dir_x = direction.x;
-    rh.ray.dir_y = direction.y;
-    rh.ray.dir_z = direction.z;
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = tMax;
-    rh.ray.time = 0.0f;
-    rh.ray.mask = ~0u;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = makeRayHit(origin, direction, tMax);
     rtcIntersect1(mRtcScene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
         return false;
@@ -157,21 +168,7 @@ std::vector<EmbreeScene::RayHit> EmbreeScene::allHits(const glm::vec3& origin, c
     rtcInitIntersectContext(&context.base);
     context.base.filter = collectHit;
     context.hits = &hits;
-    RTCRayHit rh;
-    rh.ray.org_x = origin.x;
-    rh.ray.org_y = origin.y;
-    rh.ray.org_z = origin.z;
-    rh.ray.dir_x = direction.x;
-    rh.ray.dir_y = direction.y;
-    rh.ray.dir_z = direction.z;
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = tMax;
-    rh.ray.time = 0.0f;
-    rh.ray.mask = ~0u;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = makeRayHit(origin, direction, tMax);
     rtcIntersect1(mRtcScene, &context.base, &rh);
     // Spatial splits can report a triangle once per leaf that holds it.
     std::sort(hits.begin(), hits.end(), [](const RayHit& a, const RayHit& b) {
@@ -192,19 +189,7 @@ std::vector<EmbreeScene::RayHit> EmbreeScene::allHits(const glm::vec3& origin, c
 bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tMax) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRay ray;
-    ray.org_x = origin.x;
-    ray.org_y = origin.y;
-    ray.org_z = origin.z;
-    ray.dir_x = direction.x;
-    ray.dir_y = direction.y;
-    ray.dir_z = direction.z;
-    ray.tnear = 0.0f;
-    ray.tfar = tMax;
-    ray.time = 0.0f;
-    ray.mask = ~0u;
-    ray.id = 0;
-    ray.flags = 0;
+    RTCRay ray = makeRay(origin, direction, tMax);
     rtcOccluded1(mRtcScene, &context, &ray);
     return ray.tfar < 0.0f;
 }

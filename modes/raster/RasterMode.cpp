@@ -1,6 +1,7 @@
 #include "modes/raster/RasterMode.h"
 
 #include "base/Error.h"
+#include "gpu/Accumulator.h"
 #include "sampling/PixelSamples.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
@@ -32,8 +33,7 @@ struct RasterMode::Gpu {
     std::unique_ptr<gpu::GpuScene> scene;
     std::unique_ptr<gpu::GBufferPass> gbuffer;
     std::unique_ptr<gpu::ShadowCubePass> shadows;
-    vk::GpuImage accum;  // rgba32f per pixel: running radiance sum, sample count (an image: no
-                         // 128 MiB storage-buffer limit on large frames)
+    gpu::Accumulator accum;
     vk::Buffer counters; // [0] non-finite samples
     vk::DescriptorSetLayout setLayout;
     vk::DescriptorPool pool;
@@ -88,7 +88,7 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->gbuffer = std::make_unique<gpu::GBufferPass>(*ctx, *g->scene, width, height);
     g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene,
                                                        static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution)));
-    g->accum = vk::GpuImage(*ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
+    g->accum = gpu::Accumulator(*ctx, width, height);
     g->counters = vk::Buffer(*ctx, sizeof(std::uint32_t) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Device);
     g->timer = vk::GpuTimer(*ctx);
 
@@ -124,11 +124,6 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->pipeline = vk::makeComputePipeline(device, kSpv_modes_raster_shade_comp, g->pipelineLayout.get());
 
     ctx->submitAndWait([&](VkCommandBuffer cmd) {
-        vk::ImageTransition toGeneral;
-        vk::transitionImage(cmd, g->accum.get(), toGeneral);
-        VkClearColorValue zero{};
-        VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        vkCmdClearColorImage(cmd, g->accum.get(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
         vkCmdFillBuffer(cmd, g->counters.get(), 0, VK_WHOLE_SIZE, 0);
     });
     mGpu = std::move(g);
@@ -187,19 +182,13 @@ ImageSet RasterMode::resolve() {
     Gpu& g = *mGpu;
     const int width = static_cast<int>(g.gbuffer->width());
     const int height = static_cast<int>(g.gbuffer->height());
-    std::vector<std::byte> bytes = g.accum.download(*mContext, VK_IMAGE_LAYOUT_GENERAL);
-    std::vector<glm::vec4> sums(static_cast<std::size_t>(width) * height);
-    std::memcpy(sums.data(), bytes.data(), bytes.size());
     std::uint32_t counters[4] = {};
     g.counters.download(*mContext, counters, sizeof(counters));
 
     ImageSet out;
     out.iterations = mIterations;
     out.nonFiniteSamples = counters[0];
-    Image radiance(width, height);
-    for (std::size_t i = 0; i < sums.size(); ++i) {
-        radiance.pixels()[i] = sums[i].w > 0.0f ? glm::vec3(sums[i]) / sums[i].w : glm::vec3(0.0f);
-    }
+    Image radiance = g.accum.resolve(*mContext, mIterations);
     out.layers.emplace_back("", std::move(radiance));
 
     // AOVs of the last iteration's G-buffer, for inspection and later denoisers.

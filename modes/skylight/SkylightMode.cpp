@@ -3,6 +3,7 @@
 #include "base/Error.h"
 #include "bundle/BundleFrame.h"
 #include "bundle/DepthMapPass.h"
+#include "gpu/Accumulator.h"
 #include "sampling/PixelSamples.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
@@ -58,7 +59,7 @@ struct SkylightMode::Gpu {
     vk::GpuImage placeholder;               // r32f 1x1 bound as the depth map otherwise
     std::unique_ptr<EnvironmentLight> environment;
     std::unique_ptr<DirectionSampler> directions;
-    vk::GpuImage accum;
+    gpu::Accumulator accum;
     vk::Buffer frame;
     vk::DescriptorSetLayout setLayout;
     vk::DescriptorPool pool;
@@ -117,7 +118,7 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     if (sequence == DirectionSequence::Importance && !scene.environment.present) {
         throw Error("skylight: directions=importance needs an environment in the scene");
     }
-    g->accum = vk::GpuImage(*ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
+    g->accum = gpu::Accumulator(*ctx, width, height);
     g->frame = vk::Buffer(*ctx, sizeof(shader::BundleFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
     g->timer = vk::GpuTimer(*ctx);
 
@@ -151,15 +152,9 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::SkylightPush), cs);
     g->pipeline = vk::makeComputePipeline(device, kSpv_modes_skylight_visibility_comp, g->pipelineLayout.get());
 
-    ctx->submitAndWait([&](VkCommandBuffer cmd) {
-        vk::transitionImage(cmd, g->accum.get(), vk::ImageTransition{});
-        VkClearColorValue zero{};
-        VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        vkCmdClearColorImage(cmd, g->accum.get(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
-        if (g->placeholder.get()) {
-            vk::transitionImage(cmd, g->placeholder.get(), vk::ImageTransition{});
-        }
-    });
+    if (g->placeholder.get()) {
+        ctx->submitAndWait([&](VkCommandBuffer cmd) { vk::transitionImage(cmd, g->placeholder.get(), vk::ImageTransition{}); });
+    }
     mGpu = std::move(g);
 
     // The seed only decorrelates runs; directions are reproducible from (settings, seed).
@@ -269,17 +264,9 @@ ImageSet SkylightMode::resolve() {
         throw Error("skylight: resolve() before setScene()");
     }
     Gpu& g = *mGpu;
-    const int width = static_cast<int>(g.gbuffer->width()), height = static_cast<int>(g.gbuffer->height());
-    std::vector<std::byte> raw = g.accum.download(*mContext, VK_IMAGE_LAYOUT_GENERAL);
-    const auto* sums = reinterpret_cast<const glm::vec4*>(raw.data());
     ImageSet out;
     out.iterations = mIterations;
-    Image radiance(width, height);
-    for (std::size_t i = 0; i < radiance.pixelCount(); ++i) {
-        radiance.pixels()[i] = sums[i].w > 0.0f ? glm::vec3(sums[i]) / sums[i].w : glm::vec3(0.0f);
-        out.nonFiniteSamples += static_cast<std::uint64_t>(mIterations - std::min<float>(sums[i].w, float(mIterations)));
-    }
-    out.layers.emplace_back("", std::move(radiance));
+    out.layers.emplace_back("", g.accum.resolve(*mContext, mIterations, &out.nonFiniteSamples));
     out.counters.emplace_back("bundle_fragments_last", double(g.lastStats.fragments));
     out.counters.emplace_back("bundle_rebuilds_last", double(g.lastStats.rebuilds));
     out.counters.emplace_back("bundle_tiles_last", double(g.lastStats.tiles));
