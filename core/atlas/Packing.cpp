@@ -176,4 +176,128 @@ bool packCharts(const std::vector<FlatChart>& charts, float density, int width, 
     return true;
 }
 
+namespace {
+
+// Occupied row intervals [first, second) of one atlas column, sorted and disjoint.
+using Column = std::vector<std::pair<int, int>>;
+
+// The first occupied interval of `column` that meets rows [lo, hi], or nullptr.
+const std::pair<int, int>* conflict(const Column& column, int lo, int hi) {
+    auto it = std::upper_bound(column.begin(), column.end(), lo,
+                               [](int v, const std::pair<int, int>& iv) { return v < iv.second; });
+    return it != column.end() && it->first <= hi ? &*it : nullptr;
+}
+
+void occupyRows(Column& column, int lo, int hi) { // rows [lo, hi)
+    auto it = std::lower_bound(column.begin(), column.end(), std::make_pair(lo, lo));
+    // Merge with overlapping or touching neighbours.
+    if (it != column.begin() && std::prev(it)->second >= lo) --it;
+    int a = lo, b = hi;
+    auto first = it;
+    while (it != column.end() && it->first <= b) {
+        a = std::min(a, it->first);
+        b = std::max(b, it->second);
+        ++it;
+    }
+    it = column.erase(first, it);
+    column.insert(it, {a, b});
+}
+
+} // namespace
+
+HoleFiller::HoleFiller(int width, int height, int padding)
+    : mWidth(width), mHeight(height), mPadding(padding), mColumns(width) {}
+
+void HoleFiller::occupy(const FlatChart& placed) {
+    std::vector<int> bottom(mWidth, std::numeric_limits<int>::max()), top(mWidth, -1);
+    for (std::size_t i = 0; i < placed.faces.size(); ++i) {
+        glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+        for (int k = 0; k < 3; ++k) {
+            lo = glm::min(lo, placed.uv[3 * i + k]);
+            hi = glm::max(hi, placed.uv[3 * i + k]);
+        }
+        for (int x = std::max(0, int(std::floor(lo.x))); x <= std::min(mWidth - 1, int(std::floor(hi.x))); ++x) {
+            bottom[x] = std::min(bottom[x], int(std::floor(lo.y)));
+            top[x] = std::max(top[x], int(std::floor(hi.y)));
+        }
+    }
+    for (int c = 0; c < mWidth; ++c) {
+        if (top[c] < 0) continue;
+        const int lo = std::max(0, bottom[c] - mPadding), hi = std::min(mHeight, top[c] + 1 + mPadding);
+        for (int x = std::max(0, c - mPadding); x <= std::min(mWidth - 1, c + mPadding); ++x) occupyRows(mColumns[x], lo, hi);
+    }
+}
+
+bool HoleFiller::place(const FlatChart& chart, float density, glm::vec2& offset, int& turns) {
+    glm::vec2 lo, extent;
+    bounds(chart.uv, lo, extent);
+    int bestTop = std::numeric_limits<int>::max(), bestX = -1, bestY = 0, bestTurn = 0;
+    Outline best;
+    for (int turn = 0; turn < 4; ++turn) {
+        Outline o = outline(chart, density, turn, extent);
+        if (o.width > mWidth || o.height > mHeight) continue;
+        // Large charts try every 1/16 of their width: the search stays affordable.
+        const int step = std::max(1, o.width / 16);
+        for (int x = 0; x + o.width <= mWidth; x += step) {
+            int y = 0;
+            bool moved = true;
+            while (moved && y + o.height < bestTop) {
+                moved = false;
+                for (int c = 0; c < o.width; ++c) {
+                    if (o.top[c] < 0) continue;
+                    if (const auto* iv = conflict(mColumns[x + c], y + o.bottom[c], y + o.top[c])) {
+                        y = iv->second - o.bottom[c];
+                        moved = true;
+                    }
+                }
+            }
+            if (!moved && y + o.height <= mHeight && y + o.height < bestTop) {
+                bestTop = y + o.height;
+                bestX = x;
+                bestY = y;
+                bestTurn = turn;
+                best = o;
+            }
+        }
+    }
+    if (bestX < 0) return false;
+    offset = glm::vec2(float(bestX) + 0.5f, float(bestY) + 0.5f);
+    turns = bestTurn;
+    for (int c = 0; c < best.width; ++c) {
+        if (best.top[c] < 0) continue;
+        const int rowLo = std::max(0, bestY + best.bottom[c] - mPadding);
+        const int rowHi = std::min(mHeight, bestY + best.top[c] + 1 + mPadding);
+        for (int x = std::max(0, bestX + c - mPadding); x <= std::min(mWidth - 1, bestX + c + mPadding); ++x) {
+            occupyRows(mColumns[x], rowLo, rowHi);
+        }
+    }
+    return true;
+}
+
+bool packChartsFillingHoles(const std::vector<FlatChart>& charts, float density, int width, int height, int padding,
+                            std::vector<glm::vec2>& offsets, std::vector<int>& turns) {
+    std::vector<double> area(charts.size(), 0.0);
+    for (std::size_t i = 0; i < charts.size(); ++i) {
+        glm::vec2 lo, hi;
+        bounds(charts[i].uv, lo, hi);
+        area[i] = double(hi.x) * hi.y;
+    }
+    std::vector<std::size_t> order(charts.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return area[a] > area[b]; });
+    offsets.assign(charts.size(), glm::vec2(0.0f));
+    turns.assign(charts.size(), 0);
+    HoleFiller filler(width, height, padding);
+    for (std::size_t i : order) {
+        if (!filler.place(charts[i], density, offsets[i], turns[i])) return false;
+    }
+    return true;
+}
+
+void placeChart(FlatChart& chart, float density, glm::vec2 offset, int turns) {
+    glm::vec2 extent(0.0f);
+    for (const glm::vec2& q : chart.uv) extent = glm::max(extent, q);
+    for (glm::vec2& q : chart.uv) q = turnChart(q, turns, extent) * density + offset;
+}
+
 } // namespace bl::atlas

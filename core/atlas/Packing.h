@@ -27,6 +27,30 @@ void orientCharts(std::vector<FlatChart>& charts);
 bool packCharts(const std::vector<FlatChart>& charts, float density, int width, int height, int padding,
                 std::vector<glm::vec2>& offsets, std::vector<int>& turns);
 
+// The same placement problem, but each atlas column keeps the list of its occupied row intervals
+// instead of one skyline height, so a chart can drop into the room under another chart's overhang
+// (bottom-left placement over column intervals). Slower than the skyline: it refines a density the
+// skyline found, and adds charts to a finished atlas without moving the others.
+class HoleFiller {
+public:
+    HoleFiller(int width, int height, int padding);
+    // Marks a placed chart's texels (uv in atlas texels), grown by the padding, as taken.
+    void occupy(const FlatChart& placed);
+    // Finds the lowest place for an oriented chart at `density`, over its four quarter turns, and
+    // takes it; false if it fits nowhere.
+    bool place(const FlatChart& oriented, float density, glm::vec2& offset, int& turns);
+
+private:
+    int mWidth, mHeight, mPadding;
+    std::vector<std::vector<std::pair<int, int>>> mColumns; // occupied row intervals per column
+};
+
+bool packChartsFillingHoles(const std::vector<FlatChart>& charts, float density, int width, int height, int padding,
+                            std::vector<glm::vec2>& offsets, std::vector<int>& turns);
+
+// An oriented chart's uv at `density`, turned and offset: atlas texel coordinates.
+void placeChart(FlatChart& chart, float density, glm::vec2 offset, int turns);
+
 // uv of an oriented chart (origin at its corner, `extent` its far corner) turned by `turns`
 // quarter turns counter-clockwise, back at the origin.
 glm::vec2 turnChart(glm::vec2 uv, int turns, glm::vec2 extent);
