@@ -106,3 +106,21 @@ TEST_F(Skylight, TilesUnderAMemoryCapGiveTheSameImage) {
     Image tiled = render(s, 8, {"bundle_resolution=256", "memory_cap_mib=1"});
     EXPECT_EQ(whole.pixels(), tiled.pixels());
 }
+
+// Self-hit tolerances scale with the scene: the same ambient occlusion at millimetre, metre and
+// ten-kilometre scale.
+TEST_F(Skylight, SameImageFromMillimetresToTenKilometres) {
+    Scene base = loadSmall("data/analytic/ao-blocks.toml", 24);
+    Image reference = render(base, 64, {"bundle_resolution=256"});
+    for (float scale : {1e-3f, 1e4f}) {
+        Scene s = base;
+        scaleScene(s, scale);
+        Image img = render(s, 64, {"bundle_resolution=256"});
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < img.pixelCount(); ++i) {
+            differing += std::abs(img.pixels()[i].x - reference.pixels()[i].x) > 1e-3f * std::max(reference.pixels()[i].x, 0.01f);
+        }
+        // Only pixels whose bundle ray grazes an edge may flip with float rounding.
+        EXPECT_LE(differing, img.pixelCount() / 50) << "scale " << scale;
+    }
+}
