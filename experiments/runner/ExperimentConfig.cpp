@@ -155,7 +155,14 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
         }
         t.finish();
         try {
-            loadScene(s.file); // every scene error before any task starts
+            Scene loaded = loadScene(s.file); // every scene error before any task starts
+            std::set<std::string> files{s.file};
+            for (const Mesh& m : loaded.meshes) files.insert(m.sourceFile);
+            for (const Texture& tex : loaded.textures) files.insert(tex.path);
+            if (!loaded.environment.file.empty()) files.insert(loaded.environment.file);
+            std::string identity = s.resolution ? std::to_string(s.resolution->x) + "x" + std::to_string(s.resolution->y) : "";
+            for (const std::string& f : files) identity += "|" + f + "|" + hashText(readWholeFile(f));
+            s.fingerprint = hashText(identity);
         } catch (const Error& e) {
             throwAt(path, t.line("file"), std::string("scene '") + s.name + "': " + e.what());
         }
@@ -271,11 +278,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
                     std::string params = describe(point);
                     task.id = sanitize(std::string(prefix) + "-" + scene.name + "-" + label +
                                        (params.empty() ? "" : "-" + params) + "-s" + std::to_string(seed));
-                    std::string identity = scene.file + "|" + readWholeFile(scene.file) + "|" +
-                                           (scene.resolution ? std::to_string(scene.resolution->x) + "x" +
-                                                                   std::to_string(scene.resolution->y)
-                                                             : "") +
-                                           "|" + modeName + "|" + describe(task.settings) + "|" + std::to_string(seed) +
+                    std::string identity = scene.fingerprint + "|" + modeName + "|" + describe(task.settings) + "|" + std::to_string(seed) +
                                            "|" + std::to_string(budget.iterations) + "|" + formatNumber(budget.seconds) +
                                            "|" + describe(referenceSettings);
                     for (std::uint32_t c : task.checkpoints) identity += "," + std::to_string(c);

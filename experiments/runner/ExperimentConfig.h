@@ -23,6 +23,9 @@ struct SceneEntry {
     std::string file;                    // absolute or relative to the working directory
     std::optional<glm::ivec2> resolution; // overrides the scene's camera
     std::string referenceFile;           // a given reference image, or "" (rendered)
+    // Hash of everything the scene is loaded from (scene file, meshes, textures, environment) and
+    // the resolution: editing any of them invalidates finished tasks and cached references.
+    std::string fingerprint;
 };
 
 struct ReferenceSpec {

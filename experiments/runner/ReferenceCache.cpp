@@ -7,7 +7,6 @@
 #include "modes/Registry.h"
 #include "runner/FileUtil.h"
 #include "scene/SceneLoader.h"
-#include "scene/TextParsing.h"
 
 #include <filesystem>
 #include <sstream>
@@ -66,9 +65,7 @@ ReferenceImage ReferenceCache::make(const SceneEntry& s,
         ref.path = s.referenceFile;
         return ref;
     }
-    std::string identity = readWholeFile(s.file) + "|" +
-                           (s.resolution ? std::to_string(s.resolution->x) + "x" + std::to_string(s.resolution->y) : "") +
-                           "|" + std::to_string(mConfig->reference.spp);
+    std::string identity = s.fingerprint + "|" + std::to_string(mConfig->reference.spp);
     for (const auto& [k, v] : settingsList) identity += "|" + k + "=" + formatValue(v);
     const std::string hash = hashText(identity);
     const std::string exr = (fs::path(mOutDir) / "references" / (s.name + "-" + hash + ".exr")).string();

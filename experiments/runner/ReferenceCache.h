@@ -1,5 +1,5 @@
 // The reference image of each scene: a given EXR, or rendered once by the `reference` mode and
-// cached under DIR/references/<hash>.exr, the hash covering the scene file's contents, the
+// cached under DIR/references/<hash>.exr, the hash covering every file the scene loads, the
 // resolution, the reference settings and spp. Also its own noise level (from its variance
 // layer), drawn on convergence plots: no method can be judged below it.
 #pragma once

@@ -59,3 +59,14 @@ TEST(ExperimentConfig, ErrorsBeforeAnyTaskRuns) {
     p = configWith("j.toml", "");
     EXPECT_NE(errorFor(p).find("no [[mode]]"), std::string::npos) << errorFor(p);
 }
+
+TEST(ExperimentConfig, EditingAMeshInvalidatesFinishedTasks) {
+    writeTempFile("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    writeTempFile("scene.toml", "[[mesh]]\nfile = \"tri.obj\"\n");
+    std::string config = writeTempFile("e.toml", "[experiment]\nname = \"x\"\n[[scene]]\nfile = \"scene.toml\"\n"
+                                                 "[[mode]]\nmode = \"raster\"\n");
+    const std::string before = loadExperimentConfig(config).tasks.at(0).hash;
+    EXPECT_EQ(loadExperimentConfig(config).tasks.at(0).hash, before);
+    writeTempFile("tri.obj", "v 0 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\n"); // the scene file is unchanged
+    EXPECT_NE(loadExperimentConfig(config).tasks.at(0).hash, before);
+}
