@@ -79,17 +79,18 @@ int runRender(const RenderOptions& o) {
     // Budget: iterations (--spp is the same for modes whose iteration is one sample per pixel) or
     // wall time; one iteration when nothing is given.
     const std::uint32_t iterations = o.spp ? o.spp : o.iterations ? o.iterations : (o.seconds > 0 ? 0 : 1);
+    // Wall time counts iterate() only, as the experiment runner does: writing checkpoints is not
+    // the method's cost, and samples/s must not depend on how often one asks for them.
     using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
     RenderRecord record{o.scene, o.mode, device, o.seed, 0.0, false};
     std::uint32_t done = 0;
     try {
-        while (iterations ? done < iterations : elapsed() < o.seconds) {
+        while (iterations ? done < iterations : record.wallSeconds < o.seconds) {
+            const auto start = Clock::now();
             mode->iterate({done, o.seed, o.time});
+            record.wallSeconds += std::chrono::duration<double>(Clock::now() - start).count();
             ++done;
             if (std::find(o.checkpoints.begin(), o.checkpoints.end(), done) != o.checkpoints.end()) {
-                record.wallSeconds = elapsed();
                 writeRenderOutputs(checkpointPath(o.out, done), mode->resolve(), *mode, record);
                 std::cout << "checkpoint " << done << ": " << checkpointPath(o.out, done) << "\n";
             }
@@ -97,7 +98,6 @@ int runRender(const RenderOptions& o) {
     } catch (const std::exception& e) {
         // Keep what was computed: write it as <out>.partial.exr, then report the error.
         record.partial = true;
-        record.wallSeconds = elapsed();
         if (done > 0) {
             std::string partial = std::filesystem::path(o.out).replace_extension(".partial.exr").string();
             writeRenderOutputs(partial, mode->resolve(), *mode, record);
@@ -105,7 +105,6 @@ int runRender(const RenderOptions& o) {
         }
         throw;
     }
-    record.wallSeconds = elapsed();
     ImageSet images = mode->resolve();
     std::vector<std::string> written = writeRenderOutputs(o.out, images, *mode, record);
     const double samples = double(images.radiance().pixelCount()) * done;
