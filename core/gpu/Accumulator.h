@@ -11,6 +11,8 @@ namespace bl::gpu {
 
 class Accumulator {
 public:
+    static constexpr VkDeviceSize kBytesPerPixel = 16; // rgba32f
+
     Accumulator() = default;
     Accumulator(const vk::Context& ctx, std::uint32_t width, std::uint32_t height);
 

@@ -15,6 +15,9 @@ namespace bl::gpu {
 
 class GBufferPass {
 public:
+    // Device memory per pixel: the rgba32f attachments and a 32-bit depth.
+    static constexpr VkDeviceSize kBytesPerPixel = shader::kGBufferAttachmentCount * 16 + 4;
+
     GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t width, std::uint32_t height);
 
     // Updates the camera (host-visible, so only between submissions) and records the pass.

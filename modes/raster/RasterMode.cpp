@@ -34,7 +34,6 @@ struct RasterMode::Gpu {
     std::unique_ptr<gpu::GBufferPass> gbuffer;
     std::unique_ptr<gpu::ShadowCubePass> shadows;
     gpu::Accumulator accum;
-    vk::Buffer counters; // [0] non-finite samples
     vk::DescriptorSetLayout setLayout;
     vk::DescriptorPool pool;
     VkDescriptorSet set = VK_NULL_HANDLE;
@@ -76,11 +75,12 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
 
-    // G-buffer (4 x rgba32f + depth), accumulation (rgba32f), shadow cubes (r32f) + their depth.
+    // G-buffer, accumulation, shadow cubes (r32f) + their depth.
     const VkDeviceSize pixels = VkDeviceSize(width) * height;
     const VkDeviceSize shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
     const VkDeviceSize lights = scene.lights.size();
-    ctx->requireDeviceMemory(pixels * (4 * 16 + 4 + 16) + shadowSide * shadowSide * 4 * (6 * lights + 1),
+    ctx->requireDeviceMemory(pixels * (gpu::GBufferPass::kBytesPerPixel + gpu::Accumulator::kBytesPerPixel) +
+                                 shadowSide * shadowSide * 4 * (6 * lights + 1),
                              "raster at " + std::to_string(width) + "x" + std::to_string(height));
 
     auto g = std::make_unique<Gpu>();
@@ -89,7 +89,6 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene,
                                                        static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution)));
     g->accum = gpu::Accumulator(*ctx, width, height);
-    g->counters = vk::Buffer(*ctx, sizeof(std::uint32_t) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Device);
     g->timer = vk::GpuTimer(*ctx);
 
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -100,8 +99,7 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
                  {shader::kRasterBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                  {shader::kRasterBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
                  {shader::kRasterBindingEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs},
-                 {shader::kRasterBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kRasterBindingCounters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
+                 {shader::kRasterBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
     g->pool = vk::DescriptorPool(device, 1, 8);
     g->set = g->pool.allocate(g->setLayout.get());
     vk::DescriptorWriter writer;
@@ -117,15 +115,10 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
         .image(shader::kRasterBindingEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                g->scene->environmentView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, g->scene->environmentSampler())
         .image(shader::kRasterBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->accum.view(), VK_IMAGE_LAYOUT_GENERAL)
-        .buffer(shader::kRasterBindingCounters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->counters.get())
         .update(device, g->set);
     VkDescriptorSetLayout layouts[] = {g->setLayout.get()};
     g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::RasterPush), cs);
     g->pipeline = vk::makeComputePipeline(device, kSpv_modes_raster_shade_comp, g->pipelineLayout.get());
-
-    ctx->submitAndWait([&](VkCommandBuffer cmd) {
-        vkCmdFillBuffer(cmd, g->counters.get(), 0, VK_WHOLE_SIZE, 0);
-    });
     mGpu = std::move(g);
 }
 
@@ -182,14 +175,10 @@ ImageSet RasterMode::resolve() {
     Gpu& g = *mGpu;
     const int width = static_cast<int>(g.gbuffer->width());
     const int height = static_cast<int>(g.gbuffer->height());
-    std::uint32_t counters[4] = {};
-    g.counters.download(*mContext, counters, sizeof(counters));
-
     ImageSet out;
     out.iterations = mIterations;
-    out.nonFiniteSamples = counters[0];
-    Image radiance = g.accum.resolve(*mContext, mIterations);
-    out.layers.emplace_back("", std::move(radiance));
+    // Every iteration adds one sample to every pixel unless it was NaN/Inf: the shortfall counts those.
+    out.layers.emplace_back("", g.accum.resolve(*mContext, mIterations, &out.nonFiniteSamples));
 
     // AOVs of the last iteration's G-buffer, for inspection and later denoisers.
     auto aov = [&](std::uint32_t attachment, const char* name) {

@@ -98,8 +98,8 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     mIterations = 0;
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
-    ctx->requireDeviceMemory(VkDeviceSize(width) * height * (4 * 16 + 4 + 16), "skylight at " + std::to_string(width) +
-                                                                                   "x" + std::to_string(height));
+    ctx->requireDeviceMemory(VkDeviceSize(width) * height * (gpu::GBufferPass::kBytesPerPixel + gpu::Accumulator::kBytesPerPixel),
+                             "skylight at " + std::to_string(width) + "x" + std::to_string(height));
     auto g = std::make_unique<Gpu>();
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
     g->gbuffer = std::make_unique<gpu::GBufferPass>(*ctx, *g->scene, width, height);
@@ -125,28 +125,28 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     VkDevice device = ctx->device();
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
     g->setLayout = vk::makeDescriptorSetLayout(
-        device, {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs, shader::kGBufferAttachmentCount},
-                 {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
-                 {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
-                 {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs},
-                 {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
+        device, {{shader::kSkylightBindingGBuffer, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs, shader::kGBufferAttachmentCount},
+                 {shader::kSkylightBindingCamera, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
+                 {shader::kSkylightBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kSkylightBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
+                 {shader::kSkylightBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
+                 {shader::kSkylightBindingEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs},
+                 {shader::kSkylightBindingDepthMap, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
     g->pool = vk::DescriptorPool(device, 1, 8);
     g->set = g->pool.allocate(g->setLayout.get());
     vk::DescriptorWriter writer;
     for (std::uint32_t i = 0; i < shader::kGBufferAttachmentCount; ++i) {
-        writer.image(0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->gbuffer->attachment(i).view(), VK_IMAGE_LAYOUT_GENERAL,
-                     VK_NULL_HANDLE, i);
+        writer.image(shader::kSkylightBindingGBuffer, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                     g->gbuffer->attachment(i).view(), VK_IMAGE_LAYOUT_GENERAL, VK_NULL_HANDLE, i);
     }
-    writer.buffer(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, g->gbuffer->cameraBuffer())
-        .buffer(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->materialBuffer())
-        .buffer(3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, g->frame.get())
-        .image(6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, depthMapVisibility ? g->depthMap->map().view() : g->placeholder.view(),
-               VK_IMAGE_LAYOUT_GENERAL)
-        .image(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->accum.view(), VK_IMAGE_LAYOUT_GENERAL)
-        .image(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, g->scene->environmentView(),
-               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, g->scene->environmentSampler())
+    writer.buffer(shader::kSkylightBindingCamera, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, g->gbuffer->cameraBuffer())
+        .buffer(shader::kSkylightBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->materialBuffer())
+        .buffer(shader::kSkylightBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, g->frame.get())
+        .image(shader::kSkylightBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->accum.view(), VK_IMAGE_LAYOUT_GENERAL)
+        .image(shader::kSkylightBindingEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+               g->scene->environmentView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, g->scene->environmentSampler())
+        .image(shader::kSkylightBindingDepthMap, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+               depthMapVisibility ? g->depthMap->map().view() : g->placeholder.view(), VK_IMAGE_LAYOUT_GENERAL)
         .update(device, g->set);
     VkDescriptorSetLayout layouts[] = {g->setLayout.get()};
     g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::SkylightPush), cs);

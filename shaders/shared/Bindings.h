@@ -23,10 +23,18 @@ BL_CONST uint kRasterBindingGBuffer = 0u;    // storage image[4] (rgba32f), the 
 BL_CONST uint kRasterBindingCamera = 1u;     // uniform GpuCamera
 BL_CONST uint kRasterBindingMaterials = 2u;  // storage GpuMaterial[]
 BL_CONST uint kRasterBindingLights = 3u;     // storage GpuLight[]
-BL_CONST uint kRasterBindingShadowMaps = 4u; // sampled 2D array (r32f), layers 6 l .. 6 l + 5 = light l
+BL_CONST uint kRasterBindingShadowMaps = 4u; // storage image 2D array (r32f), layers 6 l .. 6 l + 5 = light l
 BL_CONST uint kRasterBindingEnvironment = 5u; // combined sampler, lat-long rgba32f
 BL_CONST uint kRasterBindingAccum = 6u;      // storage image (rgba32f): radiance sum, sample count
-BL_CONST uint kRasterBindingCounters = 7u;   // storage uint[]: [0] non-finite samples
+
+// Skylight visibility pass, set 0.
+BL_CONST uint kSkylightBindingGBuffer = 0u;     // storage image[4] (rgba32f), the G-buffer
+BL_CONST uint kSkylightBindingCamera = 1u;      // uniform GpuCamera
+BL_CONST uint kSkylightBindingMaterials = 2u;   // storage GpuMaterial[]
+BL_CONST uint kSkylightBindingFrame = 3u;       // uniform BundleFrame of this direction (and tile)
+BL_CONST uint kSkylightBindingAccum = 4u;       // storage image (rgba32f): radiance sum, sample count
+BL_CONST uint kSkylightBindingEnvironment = 5u; // combined sampler, lat-long rgba32f
+BL_CONST uint kSkylightBindingDepthMap = 6u;    // storage image (r32f): visibility = depth_map
 
 BL_NAMESPACE_END
 #endif

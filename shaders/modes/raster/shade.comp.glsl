@@ -20,7 +20,6 @@ layout(set = 0, binding = kRasterBindingLights) readonly buffer LightBlock { Gpu
 layout(set = 0, binding = kRasterBindingShadowMaps, r32f) uniform readonly image2DArray shadowMaps;
 layout(set = 0, binding = kRasterBindingEnvironment) uniform sampler2D environment;
 layout(set = 0, binding = kRasterBindingAccum, rgba32f) uniform image2D accum;
-layout(set = 0, binding = kRasterBindingCounters) buffer CounterBlock { uint nonFiniteSamples; };
 layout(push_constant) uniform PushBlock { RasterPush push; };
 
 // Projects direction d (from the light) onto its cube face: continuous texel coordinates.
@@ -116,8 +115,7 @@ void main() {
         radiance = vec3(0.0);
     }
     if (any(isnan(radiance)) || any(isinf(radiance))) {
-        atomicAdd(nonFiniteSamples, 1u);
-        return; // never averaged in: the pixel's sample count (w) does not grow
+        return; // never averaged in: the pixel's sample count (w) does not grow, which counts it
     }
     imageStore(accum, pixel, imageLoad(accum, pixel) + vec4(radiance, 1.0));
 }

@@ -15,13 +15,13 @@
 
 layout(local_size_x = kSkylightGroupSize, local_size_y = kSkylightGroupSize) in;
 
-layout(set = 0, binding = 0, rgba32f) uniform readonly image2D gbuffer[kGBufferAttachmentCount];
-layout(set = 0, binding = 1) uniform CameraBlock { GpuCamera camera; };
-layout(set = 0, binding = 2) readonly buffer MaterialBlock { GpuMaterial materials[]; };
-layout(set = 0, binding = 3) uniform FrameBlock { BundleFrame frame; };
-layout(set = 0, binding = 4, rgba32f) uniform image2D accum;
-layout(set = 0, binding = 5) uniform sampler2D environment;
-layout(set = 0, binding = 6, r32f) uniform readonly image2D depthMap;
+layout(set = 0, binding = kSkylightBindingGBuffer, rgba32f) uniform readonly image2D gbuffer[kGBufferAttachmentCount];
+layout(set = 0, binding = kSkylightBindingCamera) uniform CameraBlock { GpuCamera camera; };
+layout(set = 0, binding = kSkylightBindingMaterials) readonly buffer MaterialBlock { GpuMaterial materials[]; };
+layout(set = 0, binding = kSkylightBindingFrame) uniform FrameBlock { BundleFrame frame; };
+layout(set = 0, binding = kSkylightBindingAccum, rgba32f) uniform image2D accum;
+layout(set = 0, binding = kSkylightBindingEnvironment) uniform sampler2D environment;
+layout(set = 0, binding = kSkylightBindingDepthMap, r32f) uniform readonly image2D depthMap;
 layout(push_constant) uniform PushBlock { SkylightPush push; };
 
 void main() {

@@ -1,5 +1,6 @@
 // The raster mode against closed-form answers (point and spot lights over a Lambertian plane,
 // shadows, one-sided emitters, environment orientation) and against itself at other scales.
+#include "modes/NonFiniteSamples.h"
 #include "modes/raster/RasterTestSupport.h"
 #include "support/AnalyticScenes.h"
 
@@ -192,3 +193,5 @@ TEST_F(RasterAnalytic, TexturedAlbedoIsSrgbDecoded) {
     float expected = pointLitRadiance(p, s.lights[0].position, kIntensity) / kAlbedo * srgbToLinear(188.0f / 255.0f);
     EXPECT_NEAR(img.at(16, 16).x, expected, 0.01f * expected);
 }
+
+TEST_F(RasterAnalytic, NonFiniteSamplesAreCountedNotAveraged) { bl::test::expectInfiniteSamplesCounted("raster", &ctx()); }

@@ -3,6 +3,7 @@
 #include "image/Metrics.h"
 
 #include <cstdio>
+#include "modes/NonFiniteSamples.h"
 #include "modes/Registry.h"
 #include "modes/reference/ReferenceTestSupport.h"
 #include "scene/SceneLoader.h"
@@ -123,4 +124,9 @@ TEST_F(Skylight, SameImageFromMillimetresToTenKilometres) {
         // Only pixels whose bundle ray grazes an edge may flip with float rounding.
         EXPECT_LE(differing, img.pixelCount() / 50) << "scale " << scale;
     }
+}
+
+TEST_F(Skylight, NonFiniteSamplesAreCountedNotAveraged) {
+    bl::test::expectInfiniteSamplesCounted("skylight", &ctx());
+    bl::test::expectInfiniteSamplesCounted("skylight", &ctx(), {"visibility=depth_map"});
 }
