@@ -58,22 +58,18 @@ int runRender(const RenderOptions& o) {
         throw Error("--out " + o.out + ": the output must be an .exr file (a .png preview is written beside it)");
     }
     const ModeEntry& entry = findMode(o.mode);
-    Settings settings(entry.parameters());
-    for (const std::string& a : o.assignments) {
-        settings.assign(a);
-    }
+    std::unique_ptr<vk::Context> ctx; // declared before the mode: the mode's GPU objects go first
+    std::unique_ptr<Mode> mode = createMode(o.mode, o.assignments); // bad parameters fail before any work
     Scene scene = loadScene(o.scene);
     if (o.width > 0) scene.camera.resolution.x = o.width;
     if (o.height > 0) scene.camera.resolution.y = o.height;
 
-    std::unique_ptr<vk::Context> ctx;
     std::string device;
     if (entry.needsGpu) {
         ctx = std::make_unique<vk::Context>(vk::ContextOptions{o.device, o.validation});
         device = ctx->info().describe();
         std::cout << "device: " << device << "\n";
     }
-    std::unique_ptr<Mode> mode = entry.create(settings);
     mode->setScene(scene, ctx.get());
 
     // Budget: iterations (--spp is the same for modes whose iteration is one sample per pixel) or

@@ -35,7 +35,11 @@ std::unique_ptr<Mode> createMode(std::string_view name, const std::vector<std::s
     const ModeEntry& entry = findMode(name);
     Settings settings(entry.parameters());
     for (const std::string& a : assignments) {
-        settings.assign(a);
+        try {
+            settings.assign(a);
+        } catch (const Error& e) {
+            throw Error("mode " + std::string(name) + ": " + e.what()); // which mode's parameter
+        }
     }
     return entry.create(settings);
 }

@@ -59,11 +59,11 @@ unknown_mode)
     expect_error "$bl" render data/cornell-box/cornell.toml --mode rasterr --out "$out/x.exr"
     ;;
 unknown_parameter)
-    expected="unknown parameter 'shadow_res'"
+    expected="mode raster: unknown parameter 'shadow_res'"
     expect_error "$bl" render data/cornell-box/cornell.toml --mode raster --set shadow_res=5 --out "$out/x.exr"
     ;;
 bad_parameter_value)
-    expected="parameter 'shadow_resolution' = 5 outside [16, 8192]"
+    expected="mode raster: parameter 'shadow_resolution' = 5 outside [16, 8192]"
     expect_error "$bl" render data/cornell-box/cornell.toml --mode raster --set shadow_resolution=5 --out "$out/x.exr"
     ;;
 bad_output_extension)
