@@ -68,6 +68,7 @@ struct SkylightMode::Gpu {
     vk::Pipeline pipeline;
     vk::GpuTimer timer;
     std::vector<glm::vec3> visiblePoints; // for fit = visible
+    Bounds bounds;                        // the scene's, over all keyframes: computed once
     PassTimes builds;                     // bundle build ms (from the builder's timer)
     BundleStats lastStats;
 };
@@ -114,6 +115,7 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
         g->placeholder = vk::GpuImage(*ctx, {1, 1, 1, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
     }
     g->environment = std::make_unique<EnvironmentLight>(scene.environment, true);
+    g->bounds = scene.bounds();
     const DirectionSequence sequence = sequenceOf(mSettings.getString(kDirections));
     if (sequence == DirectionSequence::Importance && !scene.environment.present) {
         throw Error("skylight: directions=importance needs an environment in the scene");
@@ -186,7 +188,7 @@ void SkylightMode::iterate(const IterationInfo& info) {
     const BundleDirection dir = g.directions->sample(mIterations);
     const float rotation = mSettings.getBool(kRotate) ? dir.rotation : 0.0f;
     const std::uint32_t resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
-    const Bounds bounds = scene.bounds();
+    const Bounds& bounds = g.bounds;
     if (mSettings.getString(kFit) == "visible" && g.visiblePoints.empty()) {
         // The visible points of the first G-buffer (later jitter moves them by under a pixel: the
         // frame keeps a margin of one bundle pixel).
