@@ -111,8 +111,13 @@ struct TexelOwner {
 // suffices: a chart of one triangle owns every texel it touches).
 constexpr int kCoverageRounds = 2;
 
-// Scales and places the oriented charts: the densest packing into options.size^2 (binary search),
-// or options.texelsPerUnit in the smallest power-of-two atlas that holds it. Returns the density;
+// Packings tried when searching the densest one that fits the atlas; the search ends earlier
+// when a packing fills this fraction of the atlas's rows.
+constexpr int kDensitySearchPackings = 6;
+constexpr double kFullEnough = 0.995;
+
+// Scales and places the oriented charts: the densest packing into options.size^2, or
+// options.texelsPerUnit in the smallest power-of-two atlas that holds it. Returns the density;
 // uv become atlas texel coordinates.
 float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, int& width, int& height) {
     double area = 0.0;
@@ -136,33 +141,33 @@ float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, int
     } else {
         width = height = options.size;
         if (width < 16 || width > 16384) throw Error("atlas: size " + std::to_string(width) + " outside [16, 16384]");
-        // Binary search to 0.1% of the upper bound (every texel covered).
-        double lo = 0.0, hi = std::sqrt(double(width) * height / area);
-        for (int i = 0; i < 12; ++i) {
-            double mid = 0.5 * (lo + hi);
-            (packCharts(charts, float(mid), width, height, options.padding, offsets, turns) ? lo : hi) = mid;
-        }
-        density = float(lo);
-        if (!(density > 0.0f) || !packCharts(charts, density, width, height, options.padding, offsets, turns)) {
-            throw Error("atlas: " + std::to_string(charts.size()) + " charts do not fit in " + std::to_string(width) +
-                        "^2 texels with " + std::to_string(options.padding) + " texels padding");
-        }
-        // Refine: filling the holes under overhangs fits a higher density (bisection up to 25%
-        // above the skyline's, to 1.4%: four packings).
-        std::vector<glm::vec2> denserOffsets;
-        std::vector<int> denserTurns;
-        float fits = density, fails = density * 1.25f;
-        for (int i = 0; i < 4; ++i) {
-            const float mid = 0.5f * (fits + fails);
-            if (packChartsFillingHoles(charts, mid, width, height, options.padding, denserOffsets, denserTurns)) {
-                fits = mid;
-                offsets = denserOffsets;
-                turns = denserTurns;
-            } else {
-                fails = mid;
+        // Pack into an atlas of unbounded height and scale the density by the root of the height
+        // ratio: the area a packing takes grows with the density squared, so a few packings reach
+        // the densest that fits. Start from the density that would cover 3/4 of the atlas.
+        constexpr int kUnbounded = std::numeric_limits<int>::max() / 4;
+        double fits = 0.0, trial = std::sqrt(0.75 * double(width) * height / area);
+        std::vector<glm::vec2> trialOffsets;
+        std::vector<int> trialTurns;
+        for (int i = 0; i < kDensitySearchPackings || fits == 0.0; ++i) {
+            int used = 0;
+            if (!packCharts(charts, float(trial), width, kUnbounded, options.padding, trialOffsets, trialTurns, &used)) {
+                used = 2 * height; // a chart wider than the atlas: shrink
+            }
+            log::debug("atlas: " + std::to_string(trial) + " texels per unit take " + std::to_string(used) + " rows");
+            if (used <= height && trial > fits) {
+                fits = trial;
+                offsets = trialOffsets;
+                turns = trialTurns;
+                if (used >= kFullEnough * height) break;
+            }
+            const double next = trial * std::sqrt(double(height) / std::max(used, 1)) * (used <= height ? 1.0 : 0.99);
+            trial = next > fits ? next : 0.5 * (fits + trial);
+            if (!(trial > 0.0) || i > 64) {
+                throw Error("atlas: " + std::to_string(charts.size()) + " charts do not fit in " + std::to_string(width) +
+                            "^2 texels with " + std::to_string(options.padding) + " texels padding");
             }
         }
-        density = fits;
+        density = float(fits);
     }
     for (std::size_t c = 0; c < charts.size(); ++c) {
         placeChart(charts[c], density, offsets[c], turns[c]);
@@ -267,8 +272,10 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
     std::map<std::pair<int, int>, int> owned;
     int width = options.size, height = options.size;
     const float density = packAtlas(atlas.charts, options, width, height);
-    HoleFiller filler(width, height, options.padding);
-    for (const FlatChart& c : atlas.charts) filler.occupy(c);
+    ChartPacker packer(width, height, options.padding);
+    for (const FlatChart& c : atlas.charts) packer.occupy(c);
+    log::debug("atlas: charts take " + std::to_string(double(packer.occupiedTexels()) / (double(width) * height)) +
+               " of the atlas with their padding");
     for (int round = 0;; ++round) {
         std::vector<std::pair<std::size_t, std::size_t>> uncovered = coverTexels(atlas.charts, width, height, owner, owned);
         if (uncovered.empty() || round == kCoverageRounds) {
@@ -289,7 +296,7 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
         for (FlatChart& single : singles) {
             glm::vec2 offset;
             int turns = 0;
-            if (!filler.place(single, density, offset, turns)) {
+            if (!packer.place(single, density, offset, turns)) {
                 continue; // no room left: the triangle stays uncovered and is counted
             }
             placeChart(single, density, offset, turns);

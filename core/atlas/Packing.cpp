@@ -1,6 +1,10 @@
 #include "atlas/Packing.h"
 
 #include <algorithm>
+#include <atomic>
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -38,6 +42,9 @@ void bounds(const std::vector<glm::vec2>& p, glm::vec2& lo, glm::vec2& hi) {
     }
 }
 
+// Columns tried per chart width when placing a chart: 1 for charts under this width, coarser above.
+constexpr int kColumnSteps = 16;
+
 } // namespace
 
 void orientCharts(std::vector<FlatChart>& charts) {
@@ -73,45 +80,74 @@ void orientCharts(std::vector<FlatChart>& charts) {
     }
 }
 
-namespace {
-
-// A chart's outline at a density: per texel column, the lowest and highest texel row its
-// triangles' bounding boxes reach (-1: none).
-struct Outline {
-    int width = 0;
-    int height = 0;
-    std::vector<int> bottom, top;
-};
-
-Outline outline(const FlatChart& c, float density, int turns, glm::vec2 extent) {
-    Outline o;
-    const glm::vec2 size = (turns % 2) ? glm::vec2(extent.y, extent.x) : extent;
-    // The chart spans [0.5, 0.5 + size * density] in texels: the texels floor(0.5 + size * density)
-    // + 1 wide and tall.
-    o.width = int(std::floor(size.x * density + 0.5f)) + 1;
-    o.height = int(std::floor(size.y * density + 0.5f)) + 1;
-    o.bottom.assign(o.width, std::numeric_limits<int>::max());
-    o.top.assign(o.width, -1);
-    for (std::size_t i = 0; i < c.faces.size(); ++i) {
-        glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-        for (int k = 0; k < 3; ++k) {
-            glm::vec2 q = turnChart(c.uv[3 * i + k], turns, extent);
-            // Same half-texel shift as the placement: uv 0 lands at texel 0.5.
-            q = q * density + 0.5f;
-            lo = glm::min(lo, q);
-            hi = glm::max(hi, q);
-        }
-        const int x0 = std::max(0, int(std::floor(lo.x))), x1 = std::min(o.width - 1, int(std::floor(hi.x)));
-        const int y0 = std::max(0, int(std::floor(lo.y))), y1 = std::min(o.height - 1, int(std::floor(hi.y)));
-        for (int x = x0; x <= x1; ++x) {
-            o.bottom[x] = std::min(o.bottom[x], y0);
-            o.top[x] = std::max(o.top[x], y1);
-        }
-    }
-    return o;
+std::size_t TexelMask::texels() const {
+    std::size_t n = 0;
+    for (auto [lo, hi] : runs) n += std::size_t(hi - lo);
+    return n;
 }
 
-} // namespace
+TexelMask rasterizeMask(const std::vector<glm::vec2>& corners) {
+    // A texel touching a triangle only along its boundary still counts, as in the coverage test;
+    // widening every boundary a little keeps that true under float rounding of the placement.
+    constexpr float kTouch = 1e-3f;
+    struct Span {
+        int x, lo, hi;
+    };
+    std::vector<Span> spans;
+    for (std::size_t i = 0; i + 2 < corners.size(); i += 3) {
+        const glm::vec2 t[3] = {corners[i], corners[i + 1], corners[i + 2]};
+        const float minX = std::min(t[0].x, std::min(t[1].x, t[2].x)), maxX = std::max(t[0].x, std::max(t[1].x, t[2].x));
+        for (int x = int(std::floor(minX - kTouch)); x <= int(std::floor(maxX + kTouch)); ++x) {
+            // The triangle cut to the column's slab is convex: its rows run from the lowest to the
+            // highest of its corners inside the slab and its edges' crossings of the slab's sides.
+            const float side[2] = {float(x) - kTouch, float(x + 1) + kTouch};
+            float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+            for (int k = 0; k < 3; ++k) {
+                const glm::vec2 a = t[k], b = t[(k + 1) % 3];
+                if (a.x >= side[0] && a.x <= side[1]) {
+                    lo = std::min(lo, a.y);
+                    hi = std::max(hi, a.y);
+                }
+                if (a.x == b.x) continue;
+                for (float sx : side) {
+                    if ((sx - a.x) * (sx - b.x) > 0.0f) continue;
+                    const float y = a.y + (sx - a.x) / (b.x - a.x) * (b.y - a.y);
+                    lo = std::min(lo, y);
+                    hi = std::max(hi, y);
+                }
+            }
+            if (lo > hi) continue;
+            spans.push_back({x, int(std::floor(lo - kTouch)), int(std::floor(hi + kTouch)) + 1});
+        }
+    }
+    TexelMask m;
+    if (spans.empty()) return m;
+    std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) { return a.x < b.x || (a.x == b.x && a.lo < b.lo); });
+    m.x0 = spans.front().x;
+    m.width = spans.back().x - m.x0 + 1;
+    m.columnStart.assign(std::size_t(m.width) + 1, 0);
+    int yLo = std::numeric_limits<int>::max(), yHi = std::numeric_limits<int>::lowest();
+    for (std::size_t i = 0; i < spans.size();) {
+        const int x = spans[i].x;
+        std::size_t columnBegin = m.runs.size();
+        for (; i < spans.size() && spans[i].x == x; ++i) {
+            if (m.runs.size() > columnBegin && m.runs.back().second >= spans[i].lo) {
+                m.runs.back().second = std::max(m.runs.back().second, spans[i].hi);
+            } else {
+                m.runs.emplace_back(spans[i].lo, spans[i].hi);
+            }
+        }
+        yLo = std::min(yLo, m.runs[columnBegin].first);
+        for (std::size_t r = columnBegin; r < m.runs.size(); ++r) yHi = std::max(yHi, m.runs[r].second);
+        m.columnStart[std::size_t(x - m.x0) + 1] = int(m.runs.size());
+    }
+    // Columns without spans (none inside a chart, but possible for scattered triangles) repeat
+    // their predecessor's end.
+    for (std::size_t c = 1; c < m.columnStart.size(); ++c) m.columnStart[c] = std::max(m.columnStart[c], m.columnStart[c - 1]);
+    m.y0 = yLo;
+    m.height = yHi - yLo;
+    return m;
+}
 
 glm::vec2 turnChart(glm::vec2 q, int turns, glm::vec2 extent) {
     switch (turns & 3) {
@@ -122,70 +158,16 @@ glm::vec2 turnChart(glm::vec2 q, int turns, glm::vec2 extent) {
     }
 }
 
-bool packCharts(const std::vector<FlatChart>& charts, float density, int width, int height, int padding,
-                std::vector<glm::vec2>& offsets, std::vector<int>& turns) {
-    std::vector<glm::vec2> extent(charts.size());
-    for (std::size_t i = 0; i < charts.size(); ++i) {
-        glm::vec2 lo, hi;
-        bounds(charts[i].uv, lo, hi);
-        extent[i] = hi; // oriented charts start at the origin
-    }
-    std::vector<std::size_t> order(charts.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return extent[a].y > extent[b].y || (extent[a].y == extent[b].y && extent[a].x > extent[b].x);
-    });
-    offsets.assign(charts.size(), glm::vec2(0.0f));
-    turns.assign(charts.size(), 0);
-    std::vector<int> skyline(width, 0); // first free row of each column (padding included)
-    for (std::size_t i : order) {
-        int bestY = std::numeric_limits<int>::max(), bestX = -1;
-        int bestTurn = 0;
-        Outline best;
-        for (int turn = 0; turn < 4; ++turn) {
-            Outline o = outline(charts[i], density, turn, extent[i]);
-            if (o.width > width) return false;
-            // Drop the outline at every column; keep the placement whose top is lowest.
-            for (int x = 0; x + o.width <= width; ++x) {
-                int y = 0;
-                for (int c = 0; c < o.width; ++c) {
-                    if (o.top[c] >= 0) y = std::max(y, skyline[x + c] - o.bottom[c]);
-                }
-                const int top = y + o.height;
-                if (top < bestY || (top == bestY && x < bestX)) {
-                    bestY = top;
-                    bestX = x;
-                    bestTurn = turn;
-                    best = o;
-                }
-            }
-        }
-        if (bestX < 0 || bestY > height) return false;
-        const int y = bestY - best.height;
-        offsets[i] = glm::vec2(float(bestX) + 0.5f, float(y) + 0.5f);
-        turns[i] = bestTurn;
-        // Raise the skyline over the chart's columns, grown by the padding on every side.
-        for (int c = 0; c < best.width; ++c) {
-            if (best.top[c] < 0) continue;
-            const int raised = y + best.top[c] + 1 + padding;
-            for (int x = std::max(0, bestX + c - padding); x <= std::min(width - 1, bestX + c + padding); ++x) {
-                skyline[x] = std::max(skyline[x], raised);
-            }
-        }
-    }
-    return true;
-}
-
 namespace {
 
 // Occupied row intervals [first, second) of one atlas column, sorted and disjoint.
 using Column = std::vector<std::pair<int, int>>;
 
-// The first occupied interval of `column` that meets rows [lo, hi], or nullptr.
+// The first occupied interval of `column` that meets rows [lo, hi), or nullptr.
 const std::pair<int, int>* conflict(const Column& column, int lo, int hi) {
     auto it = std::upper_bound(column.begin(), column.end(), lo,
                                [](int v, const std::pair<int, int>& iv) { return v < iv.second; });
-    return it != column.end() && it->first <= hi ? &*it : nullptr;
+    return it != column.end() && it->first < hi ? &*it : nullptr;
 }
 
 void occupyRows(Column& column, int lo, int hi) { // rows [lo, hi)
@@ -205,77 +187,103 @@ void occupyRows(Column& column, int lo, int hi) { // rows [lo, hi)
 
 } // namespace
 
-HoleFiller::HoleFiller(int width, int height, int padding)
-    : mWidth(width), mHeight(height), mPadding(padding), mColumns(width) {}
+ChartPacker::ChartPacker(int width, int height, int padding)
+    : mWidth(width), mHeight(height), mPadding(padding), mColumns(std::size_t(width)) {}
 
-void HoleFiller::occupy(const FlatChart& placed) {
-    std::vector<int> bottom(mWidth, std::numeric_limits<int>::max()), top(mWidth, -1);
-    for (std::size_t i = 0; i < placed.faces.size(); ++i) {
-        glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-        for (int k = 0; k < 3; ++k) {
-            lo = glm::min(lo, placed.uv[3 * i + k]);
-            hi = glm::max(hi, placed.uv[3 * i + k]);
-        }
-        for (int x = std::max(0, int(std::floor(lo.x))); x <= std::min(mWidth - 1, int(std::floor(hi.x))); ++x) {
-            bottom[x] = std::min(bottom[x], int(std::floor(lo.y)));
-            top[x] = std::max(top[x], int(std::floor(hi.y)));
+void ChartPacker::take(const TexelMask& m, int dx, int dy) {
+    for (int c = 0; c < m.width; ++c) {
+        const int column = m.x0 + c + dx;
+        for (int r = m.columnStart[c]; r < m.columnStart[c + 1]; ++r) {
+            const int lo = std::max(0, m.runs[r].first + dy - mPadding);
+            const int hi = std::min(mHeight, m.runs[r].second + dy + mPadding);
+            for (int x = std::max(0, column - mPadding); x <= std::min(mWidth - 1, column + mPadding); ++x) {
+                occupyRows(mColumns[x], lo, hi);
+            }
         }
     }
-    for (int c = 0; c < mWidth; ++c) {
-        if (top[c] < 0) continue;
-        const int lo = std::max(0, bottom[c] - mPadding), hi = std::min(mHeight, top[c] + 1 + mPadding);
-        for (int x = std::max(0, c - mPadding); x <= std::min(mWidth - 1, c + mPadding); ++x) occupyRows(mColumns[x], lo, hi);
-    }
+    mUsedHeight = std::max(mUsedHeight, m.y0 + dy + m.height);
 }
 
-bool HoleFiller::place(const FlatChart& chart, float density, glm::vec2& offset, int& turns) {
+void ChartPacker::occupy(const FlatChart& placed) { take(rasterizeMask(placed.uv), 0, 0); }
+
+namespace {
+
+// A placement found by the search: the lowest top wins, ties go to the first turn and column.
+struct Candidate {
+    int top = std::numeric_limits<int>::max();
+    int turn = -1, dx = 0, dy = 0;
+    bool operator<(const Candidate& o) const {
+        return top != o.top ? top < o.top : (turn != o.turn ? turn < o.turn : dx < o.dx);
+    }
+};
+
+} // namespace
+
+bool ChartPacker::place(const FlatChart& chart, float density, glm::vec2& offset, int& turns) {
     glm::vec2 lo, extent;
     bounds(chart.uv, lo, extent);
-    int bestTop = std::numeric_limits<int>::max(), bestX = -1, bestY = 0, bestTurn = 0;
-    Outline best;
+    TexelMask masks[4];
+    std::vector<glm::vec2> corners(chart.uv.size());
     for (int turn = 0; turn < 4; ++turn) {
-        Outline o = outline(chart, density, turn, extent);
-        if (o.width > mWidth || o.height > mHeight) continue;
-        // Large charts try every 1/16 of their width: the search stays affordable.
-        const int step = std::max(1, o.width / 16);
-        for (int x = 0; x + o.width <= mWidth; x += step) {
-            int y = 0;
-            bool moved = true;
-            while (moved && y + o.height < bestTop) {
-                moved = false;
-                for (int c = 0; c < o.width; ++c) {
-                    if (o.top[c] < 0) continue;
-                    if (const auto* iv = conflict(mColumns[x + c], y + o.bottom[c], y + o.top[c])) {
-                        y = iv->second - o.bottom[c];
-                        moved = true;
+        // uv 0 lands on texel centre 0.5; placements then shift by whole texels.
+        for (std::size_t k = 0; k < corners.size(); ++k) corners[k] = turnChart(chart.uv[k], turn, extent) * density + 0.5f;
+        masks[turn] = rasterizeMask(corners);
+    }
+    // Columns are searched in parallel. A column's climb stops once its top exceeds the best top
+    // found so far (ties are still climbed), so the choice does not depend on the threads' timing.
+    std::atomic<int> bestTop{mHeight};
+    tbb::combinable<Candidate> best;
+    for (int turn = 0; turn < 4; ++turn) {
+        const TexelMask& m = masks[turn];
+        if (m.width > mWidth || m.height > mHeight) continue;
+        // Wide charts try every 1/kColumnSteps of their width: the search stays affordable.
+        const int step = std::max(1, m.width / kColumnSteps);
+        const int positions = (mWidth - m.width) / step + 1;
+        tbb::parallel_for(tbb::blocked_range<int>(0, positions, 16), [&](const tbb::blocked_range<int>& range) {
+            Candidate& mine = best.local();
+            for (int i = range.begin(); i != range.end(); ++i) {
+                const int dx = i * step - m.x0;
+                int dy = -m.y0;
+                bool moved = true;
+                while (moved && m.y0 + dy + m.height <= bestTop.load(std::memory_order_relaxed)) {
+                    moved = false;
+                    for (int c = 0; c < m.width && m.y0 + dy + m.height <= bestTop.load(std::memory_order_relaxed); ++c) {
+                        const Column& column = mColumns[std::size_t(m.x0 + c + dx)];
+                        for (int r = m.columnStart[c]; r < m.columnStart[c + 1]; ++r) {
+                            const auto [runLo, runHi] = m.runs[r];
+                            if (const auto* iv = conflict(column, runLo + dy, runHi + dy)) {
+                                dy = iv->second - runLo;
+                                moved = true;
+                            }
+                        }
                     }
                 }
+                const Candidate here{m.y0 + dy + m.height, turn, dx, dy};
+                if (moved || here.top > bestTop.load(std::memory_order_relaxed)) continue;
+                if (here < mine) mine = here;
+                for (int seen = bestTop.load(); here.top < seen && !bestTop.compare_exchange_weak(seen, here.top);) {
+                }
             }
-            if (!moved && y + o.height <= mHeight && y + o.height < bestTop) {
-                bestTop = y + o.height;
-                bestX = x;
-                bestY = y;
-                bestTurn = turn;
-                best = o;
-            }
-        }
+        });
     }
-    if (bestX < 0) return false;
-    offset = glm::vec2(float(bestX) + 0.5f, float(bestY) + 0.5f);
-    turns = bestTurn;
-    for (int c = 0; c < best.width; ++c) {
-        if (best.top[c] < 0) continue;
-        const int rowLo = std::max(0, bestY + best.bottom[c] - mPadding);
-        const int rowHi = std::min(mHeight, bestY + best.top[c] + 1 + mPadding);
-        for (int x = std::max(0, bestX + c - mPadding); x <= std::min(mWidth - 1, bestX + c + mPadding); ++x) {
-            occupyRows(mColumns[x], rowLo, rowHi);
-        }
-    }
+    const Candidate chosen = best.combine([](const Candidate& a, const Candidate& b) { return a < b ? a : b; });
+    if (chosen.turn < 0) return false;
+    offset = glm::vec2(float(chosen.dx) + 0.5f, float(chosen.dy) + 0.5f);
+    turns = chosen.turn;
+    take(masks[chosen.turn], chosen.dx, chosen.dy);
     return true;
 }
 
-bool packChartsFillingHoles(const std::vector<FlatChart>& charts, float density, int width, int height, int padding,
-                            std::vector<glm::vec2>& offsets, std::vector<int>& turns) {
+std::size_t ChartPacker::occupiedTexels() const {
+    std::size_t n = 0;
+    for (const Column& column : mColumns) {
+        for (auto [lo, hi] : column) n += std::size_t(hi - lo);
+    }
+    return n;
+}
+
+bool packCharts(const std::vector<FlatChart>& charts, float density, int width, int height, int padding,
+                std::vector<glm::vec2>& offsets, std::vector<int>& turns, int* usedHeight) {
     std::vector<double> area(charts.size(), 0.0);
     for (std::size_t i = 0; i < charts.size(); ++i) {
         glm::vec2 lo, hi;
@@ -287,10 +295,11 @@ bool packChartsFillingHoles(const std::vector<FlatChart>& charts, float density,
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return area[a] > area[b]; });
     offsets.assign(charts.size(), glm::vec2(0.0f));
     turns.assign(charts.size(), 0);
-    HoleFiller filler(width, height, padding);
+    ChartPacker packer(width, height, padding);
     for (std::size_t i : order) {
-        if (!filler.place(charts[i], density, offsets[i], turns[i])) return false;
+        if (!packer.place(charts[i], density, offsets[i], turns[i])) return false;
     }
+    if (usedHeight) *usedHeight = packer.usedHeight();
     return true;
 }
 

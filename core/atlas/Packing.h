@@ -1,10 +1,10 @@
-// Packing flattened charts into one atlas: each chart turned to its minimum-area bounding
-// rectangle (rotation allowed, from its convex hull's edge directions) and lying flat, then dropped,
-// tallest first, onto a skyline of the atlas: the chart's lower outline (per texel column, from its
-// triangles' bounding boxes, so conservative) rests on the outline of what is already placed, at the
-// column and half-turn that keep it lowest, like a Tetris piece. Charts interlock instead of
-// wasting their bounding rectangles. Every outline is grown by `padding` texels, so the texels two
-// charts touch are at least `padding` apart.
+// Packing flattened charts into one atlas. Each chart is turned to its minimum-area bounding
+// rectangle (rotation allowed, from its convex hull's edge directions), lying flat, then placed
+// bottom-left: at the lowest spot where its texel mask meets nothing placed before, over every
+// column and its four quarter turns. Masks are exact and conservative: per texel column, the rows
+// the chart's triangles touch, as a list of runs, so a chart drops into another's holes and
+// concavities (a wall's window, the room under an arch), not only above its outline. Placed
+// charts are grown by `padding` texels, so texels of two charts are at least `padding` apart.
 #pragma once
 
 #include "atlas/Parameterization.h"
@@ -13,40 +13,46 @@
 
 namespace bl::atlas {
 
-struct Placement {
-    glm::vec2 offset{0.0f}; // atlas texel coordinates of the chart's uv origin after `rotation`
-    float rotation = 0.0f;  // radians, applied to uv before scaling
-    bool fits = false;
-};
-
 // Rotates every chart's uv in place to its minimum-area bounding rectangle, lying flat.
 void orientCharts(std::vector<FlatChart>& charts);
 
-// Places the (oriented) charts at `density` texels per world unit in a width x height atlas; false
-// if they do not fit. uv -> atlas texel: orient(uv, turns[i], extent) * density + offset.
-bool packCharts(const std::vector<FlatChart>& charts, float density, int width, int height, int padding,
-                std::vector<glm::vec2>& offsets, std::vector<int>& turns);
+// Rows [lo, hi) per texel column of a set of triangles in texel coordinates: every texel a
+// triangle touches (closed boundaries, as the atlas's coverage test) is inside a run.
+struct TexelMask {
+    int x0 = 0, y0 = 0;           // first column and row touched
+    int width = 0, height = 0;    // columns and rows spanned
+    std::vector<int> columnStart; // runs of column x0 + c: runs[columnStart[c] .. columnStart[c + 1])
+    std::vector<std::pair<int, int>> runs; // absolute rows [lo, hi), sorted and disjoint per column
+    std::size_t texels() const;
+};
 
-// The same placement problem, but each atlas column keeps the list of its occupied row intervals
-// instead of one skyline height, so a chart can drop into the room under another chart's overhang
-// (bottom-left placement over column intervals). Slower than the skyline: it refines a density the
-// skyline found, and adds charts to a finished atlas without moving the others.
-class HoleFiller {
+// The mask of triangles given as 3 corners each, in texel coordinates.
+TexelMask rasterizeMask(const std::vector<glm::vec2>& corners);
+
+// The bottom-left packer: each atlas column keeps its occupied row intervals.
+class ChartPacker {
 public:
-    HoleFiller(int width, int height, int padding);
+    ChartPacker(int width, int height, int padding);
     // Marks a placed chart's texels (uv in atlas texels), grown by the padding, as taken.
     void occupy(const FlatChart& placed);
     // Finds the lowest place for an oriented chart at `density`, over its four quarter turns, and
-    // takes it; false if it fits nowhere.
+    // takes it; false if it fits nowhere. uv -> atlas texel: turnChart(uv, turns, extent) * density + offset.
     bool place(const FlatChart& oriented, float density, glm::vec2& offset, int& turns);
+    // Texels taken so far (charts grown by the padding), and the rows up to the highest one.
+    std::size_t occupiedTexels() const;
+    int usedHeight() const { return mUsedHeight; }
 
 private:
+    void take(const TexelMask& mask, int dx, int dy);
     int mWidth, mHeight, mPadding;
+    int mUsedHeight = 0;
     std::vector<std::vector<std::pair<int, int>>> mColumns; // occupied row intervals per column
 };
 
-bool packChartsFillingHoles(const std::vector<FlatChart>& charts, float density, int width, int height, int padding,
-                            std::vector<glm::vec2>& offsets, std::vector<int>& turns);
+// Places every oriented chart, largest first, at `density` into a width x height atlas; false if
+// one does not fit. `usedHeight` (optional) receives the rows the packing reaches.
+bool packCharts(const std::vector<FlatChart>& charts, float density, int width, int height, int padding,
+                std::vector<glm::vec2>& offsets, std::vector<int>& turns, int* usedHeight = nullptr);
 
 // An oriented chart's uv at `density`, turned and offset: atlas texel coordinates.
 void placeChart(FlatChart& chart, float density, glm::vec2 offset, int turns);
