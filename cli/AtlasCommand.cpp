@@ -27,7 +27,10 @@ void addAtlasCommand(CLI::App& app, Action& action) {
                      ->check(CLI::Range(16, 16384));
     tpu->excludes(size);
     cmd->add_option("--padding", o->atlas.padding, "texels between charts")->check(CLI::Range(2, 64));
-    cmd->add_option("--cone", o->atlas.coneDegrees, "charting normal cone (degrees)")->check(CLI::Range(1.0f, 89.0f));
+    cmd->add_option("--cone", o->atlas.charting.coneDegrees, "charting normal cone (degrees)")
+        ->check(CLI::Range(1.0f, 89.0f));
+    cmd->add_option("--seam-weight", o->atlas.charting.seamWeight, "charting cost of seam length against normal deviation")
+        ->check(CLI::Range(0.0f, 100.0f));
     cmd->add_option("--max-stretch", o->atlas.maxStretch, "split charts above this L2 stretch")
         ->check(CLI::Range(1.0f, 100.0f));
     cmd->add_option("-o,--out", o->out, "PNG of the charts in colour");

@@ -255,7 +255,7 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
         std::uint32_t distinct = 0;
         welded[m] = weldVertices(mesh, distinct);
         ChartingStats cs;
-        for (const ChartFaces& c : growCharts(mesh, m, options.coneDegrees, cs)) {
+        for (const ChartFaces& c : growCharts(mesh, m, options.charting, cs)) {
             for (const std::vector<std::uint32_t>& part : connectedComponents(mesh, welded[m], c.faces)) {
                 flattenSplitting(mesh, m, welded[m], part, options.maxStretch, atlas.charts);
             }

@@ -23,7 +23,7 @@ struct AtlasOptions {
     int size = 2048;             // atlas side in texels (when texelsPerUnit is 0)
     float texelsPerUnit = 0.0f;  // fixed density instead: the atlas grows to fit it
     int padding = 2;             // texels between charts
-    float coneDegrees = 45.0f;   // charting normal cone
+    ChartingOptions charting;    // normal cone and seam-length weight of the charts
     float maxStretch = 1.5f;     // charts above this L2 stretch are split
 };
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <iostream>
+#include <limits>
 #include <queue>
 
 namespace bl::atlas {
@@ -34,14 +35,19 @@ std::vector<std::uint32_t> weldVertices(const Mesh& m, std::uint32_t& count) {
     return welded;
 }
 
-std::vector<ChartFaces> growCharts(const Mesh& mesh, std::uint32_t meshIndex, float coneDegrees, ChartingStats& stats) {
-    const float cosCone = std::cos(glm::radians(coneDegrees));
+std::vector<ChartFaces> growCharts(const Mesh& mesh, std::uint32_t meshIndex, const ChartingOptions& options,
+                                   ChartingStats& stats) {
+    const float cosCone = std::cos(glm::radians(options.coneDegrees));
     std::uint32_t weldedCount = 0;
     const std::vector<std::uint32_t> welded = weldVertices(mesh, weldedCount);
 
     OMesh om;
     std::vector<OMesh::VertexHandle> vh(weldedCount);
-    for (std::uint32_t v = 0; v < weldedCount; ++v) vh[v] = om.add_vertex(OMesh::Point(0, 0, 0));
+    {
+        std::vector<glm::vec3> at(weldedCount);
+        for (std::size_t v = 0; v < welded.size(); ++v) at[welded[v]] = mesh.positions[v];
+        for (std::uint32_t v = 0; v < weldedCount; ++v) vh[v] = om.add_vertex(OMesh::Point(at[v].x, at[v].y, at[v].z));
+    }
     const std::size_t nf = mesh.triangles.size();
     std::vector<int> omFaceOf(nf, -1);
     std::vector<std::uint32_t> meshFaceOf;
@@ -76,6 +82,21 @@ std::vector<ChartFaces> growCharts(const Mesh& mesh, std::uint32_t meshIndex, fl
         area[f] = glm::length(weighted[f]);
         normal[f] = area[f] > 0.0f ? weighted[f] / area[f] : glm::vec3(0, 0, 1);
     }
+    // Each face's neighbours across its edges and the edges' lengths (boundary edges: no neighbour).
+    struct Side {
+        std::int64_t face = -1;
+        float length = 0.0f;
+    };
+    std::vector<std::array<Side, 3>> sides(nf);
+    std::vector<float> perimeter(nf, 0.0f);
+    for (std::uint32_t f : meshFaceOf) {
+        int k = 0;
+        for (auto h = om.fh_iter(OMesh::FaceHandle(omFaceOf[f])); h.is_valid() && k < 3; ++h, ++k) {
+            const OMesh::FaceHandle g = om.opposite_face_handle(*h);
+            sides[f][k] = {g.is_valid() ? std::int64_t(meshFaceOf[std::size_t(g.idx())]) : -1, om.calc_edge_length(*h)};
+            perimeter[f] += sides[f][k].length;
+        }
+    }
 
     std::vector<int> chartOf(nf, -1);
     std::vector<ChartFaces> charts;
@@ -83,31 +104,50 @@ std::vector<ChartFaces> growCharts(const Mesh& mesh, std::uint32_t meshIndex, fl
         chartOf[f] = static_cast<int>(charts.size());
         charts.push_back({meshIndex, {f}});
     }
+    // The cost of adding face f to chart `id` with normal `axis`: its normal's deviation (1 at the
+    // cone's rim) plus the seam it adds, the length of its edges left on the chart's boundary minus
+    // those it closes, per perimeter (-1 for a face filling a hole, 1/3 for one sticking out).
+    // Faces cheaper than kMaxChartingCost join, cheapest first: charts grow round, their seams
+    // short and straight instead of following every wrinkle of a scanned surface.
+    auto cost = [&](std::uint32_t f, int id, glm::vec3 axis) {
+        const float alignment = glm::dot(normal[f], axis);
+        if (alignment < cosCone) return std::numeric_limits<float>::infinity();
+        float seam = 0.0f;
+        for (const Side& side : sides[f]) seam += (side.face >= 0 && chartOf[std::size_t(side.face)] == id) ? -side.length : side.length;
+        const float deviation = (1.0f - alignment) / std::max(1e-6f, 1.0f - cosCone);
+        return deviation + options.seamWeight * (perimeter[f] > 0.0f ? seam / perimeter[f] : 0.0f);
+    };
     std::vector<std::uint32_t> seeds = meshFaceOf;
     std::sort(seeds.begin(), seeds.end(), [&](std::uint32_t a, std::uint32_t b) { return area[a] > area[b]; });
     for (std::uint32_t seed : seeds) {
         if (chartOf[seed] >= 0) continue;
         const int id = static_cast<int>(charts.size());
         ChartFaces chart{meshIndex, {}};
-        glm::vec3 sum(0.0f);
-        using Item = std::pair<float, std::uint32_t>; // (alignment, face): best first
-        std::priority_queue<Item> frontier;
-        frontier.push({1.0f, seed});
-        while (!frontier.empty()) {
-            std::uint32_t f = frontier.top().second;
-            frontier.pop();
-            if (chartOf[f] >= 0) continue;
-            glm::vec3 axis = glm::dot(sum, sum) > 0.0f ? glm::normalize(sum) : normal[f];
-            if (glm::dot(normal[f], axis) < cosCone) continue; // may join another chart later
+        glm::vec3 sum(0.0f); // area-weighted normal
+        using Item = std::pair<float, std::uint32_t>; // (cost, face): cheapest first
+        std::priority_queue<Item, std::vector<Item>, std::greater<>> frontier;
+        auto join = [&](std::uint32_t f) {
             chartOf[f] = id;
             chart.faces.push_back(f);
             sum += weighted[f];
-            axis = glm::normalize(sum);
-            OMesh::FaceHandle fh(omFaceOf[f]);
-            for (auto ff = om.ff_iter(fh); ff.is_valid(); ++ff) {
-                std::uint32_t g = meshFaceOf[static_cast<std::size_t>(ff->idx())];
-                if (chartOf[g] < 0) frontier.push({glm::dot(normal[g], axis), g});
+            const glm::vec3 grown = glm::normalize(sum);
+            for (const Side& side : sides[f]) {
+                if (side.face < 0 || chartOf[std::size_t(side.face)] >= 0) continue;
+                const float c = cost(std::uint32_t(side.face), id, grown);
+                if (c <= kMaxChartingCost) frontier.push({c, std::uint32_t(side.face)});
             }
+        };
+        join(seed);
+        while (!frontier.empty()) {
+            const auto [queued, f] = frontier.top();
+            frontier.pop();
+            if (chartOf[f] >= 0) continue;
+            const float now = cost(f, id, glm::normalize(sum));
+            if (now > queued + 1e-4f) { // the chart's normal moved since it was queued
+                if (now <= kMaxChartingCost) frontier.push({now, f});
+                continue; // else it may join when a neighbour does, or start a chart of its own
+            }
+            join(f);
         }
         charts.push_back(std::move(chart));
     }

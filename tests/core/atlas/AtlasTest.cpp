@@ -87,8 +87,20 @@ TEST(Atlas, ScannedBunny) {
     Atlas a = buildAtlas(s, o);
     expectInvariants(s, a, 2.0);
     EXPECT_GT(a.stats.charts, 10u);
-    // Measured 0.5-0.6 on the scans (the 0.70 target is not reached yet): a floor against regressions.
-    EXPECT_GT(a.stats.utilization, 0.45);
+    EXPECT_GT(a.stats.utilization, 0.70); // measured 0.745
+}
+
+// The targets at 2048^2 on the full scans (Sponza's are measured by
+// experiments/bench/atlas.sh): utilization >= 0.70, no flips, overlaps or uncovered triangles,
+// stretch <= 2.
+TEST(Atlas, TargetsOnTheFullScans) {
+    for (const char* path : {"data/bunny/stanford/bun_zipper.ply", "data/dragon/dragon_43k_ascii.ply"}) {
+        SCOPED_TRACE(path);
+        Scene s = loadScene(bl::test::sharedPath(path));
+        Atlas a = buildAtlas(s, AtlasOptions{2048});
+        expectInvariants(s, a, 2.0);
+        EXPECT_GE(a.stats.utilization, 0.70);
+    }
 }
 
 TEST(Atlas, BrokenMeshIsHandledAndCounted) {
