@@ -26,6 +26,8 @@ void addAtlasCommand(CLI::App& app, Action& action) {
     auto* size = cmd->add_option("--size", o->atlas.size, "atlas side in texels (density chosen to fill it)")
                      ->check(CLI::Range(16, 16384));
     tpu->excludes(size);
+    cmd->add_option("--page-size", o->atlas.pageSize, "with --texels-per-unit: largest page side; more pages beyond")
+        ->check(CLI::Range(64, 16384));
     cmd->add_option("--padding", o->atlas.padding, "texels between charts")->check(CLI::Range(2, 64));
     cmd->add_option("--cone", o->atlas.charting.coneDegrees, "charting normal cone (degrees)")
         ->check(CLI::Range(1.0f, 89.0f));
@@ -40,8 +42,8 @@ void addAtlasCommand(CLI::App& app, Action& action) {
             Scene scene = loadScene(o->scene);
             atlas::Atlas a = atlas::buildAtlas(scene, o->atlas);
             const atlas::AtlasStats& s = a.stats;
-            std::printf("atlas of %s: %dx%d, %.5g texels per unit, %zu charts over %zu triangles\n", o->scene.c_str(),
-                        a.maps.width, a.maps.height, a.texelsPerUnit, s.charts, s.triangles);
+            std::printf("atlas of %s: %d page(s) of %dx%d, %.5g texels per unit, %zu charts over %zu triangles\n",
+                        o->scene.c_str(), a.maps.pages, a.maps.width, a.maps.height, a.texelsPerUnit, s.charts, s.triangles);
             std::printf("utilization %.4f, stretch mean %.4f max %.4f, flipped %zu, overlapping texels %zu, "
                         "uncovered triangles %zu, non-manifold %zu, degenerate %zu, %.2f s\n",
                         s.utilization, s.meanStretch, s.maxStretch, s.flippedTriangles, s.overlappingTexels,
@@ -54,6 +56,7 @@ void addAtlasCommand(CLI::App& app, Action& action) {
                 std::ostringstream j;
                 JsonWriter w(j);
                 w.beginObject().field("scene", o->scene).field("width", a.maps.width).field("height", a.maps.height);
+                w.field("pages", a.maps.pages);
                 w.field("texels_per_unit", double(a.texelsPerUnit)).field("utilization", s.utilization);
                 w.field("charts", static_cast<unsigned long long>(s.charts));
                 w.field("triangles", static_cast<unsigned long long>(s.triangles));

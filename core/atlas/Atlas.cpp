@@ -116,10 +116,13 @@ constexpr int kCoverageRounds = 2;
 constexpr int kDensitySearchPackings = 6;
 constexpr double kFullEnough = 0.995;
 
-// Scales and places the oriented charts: the densest packing into options.size^2, or
-// options.texelsPerUnit in the smallest power-of-two atlas that holds it. Returns the density;
-// uv become atlas texel coordinates.
-float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, int& width, int& height) {
+// The most texels an atlas may have over all its pages (49 bytes of maps each: 12 GiB).
+constexpr std::size_t kMaxAtlasTexels = std::size_t(1) << 28;
+
+// Scales and places the oriented charts: the densest packing into one options.size^2 page, or
+// options.texelsPerUnit in the smallest power-of-two page that holds it, up to options.pageSize,
+// then on as many such pages as needed. Returns the density; uv become page texel coordinates.
+float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, int& width, int& height, int& pages) {
     double area = 0.0;
     for (const FlatChart& c : charts) {
         for (std::size_t i = 0; i < c.faces.size(); ++i) {
@@ -130,12 +133,25 @@ float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, int
     if (!(area > 0.0)) {
         throw Error("atlas: the scene has no surface area");
     }
-    std::vector<glm::vec2> offsets;
-    std::vector<int> turns;
+    Packing packing;
     float density = options.texelsPerUnit;
     if (density > 0.0f) {
-        for (width = 64; !packCharts(charts, density, width, width, options.padding, offsets, turns); width *= 2) {
-            if (width >= 16384) throw Error("atlas: " + std::to_string(density) + " texels per unit need over 16384^2");
+        if (options.pageSize < 64 || options.pageSize > 16384) {
+            throw Error("atlas: page size " + std::to_string(options.pageSize) + " outside [64, 16384]");
+        }
+        const double needed = area * double(density) * density;
+        if (!(needed < double(kMaxAtlasTexels))) {
+            throw Error("atlas: " + formatNumber(density) + " texels per unit need over " + formatNumber(needed / 1048576.0) +
+                        " M texels, more than the " + std::to_string(kMaxAtlasTexels >> 20) + " M an atlas may have");
+        }
+        for (width = 64; width < options.pageSize; width *= 2) {
+            if (packCharts(charts, density, width, width, options.padding, 1, packing)) break;
+        }
+        width = std::min(width, options.pageSize);
+        const int maxPages = int(kMaxAtlasTexels / (std::size_t(width) * width));
+        if (packing.pageCount == 0 && !packCharts(charts, density, width, width, options.padding, maxPages, packing)) {
+            throw Error("atlas: at " + formatNumber(density) + " texels per unit a chart is larger than a " +
+                        std::to_string(width) + "^2 page, or the charts need over " + std::to_string(maxPages) + " pages");
         }
         height = width;
     } else {
@@ -146,18 +162,14 @@ float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, int
         // the densest that fits. Start from the density that would cover 3/4 of the atlas.
         constexpr int kUnbounded = std::numeric_limits<int>::max() / 4;
         double fits = 0.0, trial = std::sqrt(0.75 * double(width) * height / area);
-        std::vector<glm::vec2> trialOffsets;
-        std::vector<int> trialTurns;
+        Packing attempt;
         for (int i = 0; i < kDensitySearchPackings || fits == 0.0; ++i) {
-            int used = 0;
-            if (!packCharts(charts, float(trial), width, kUnbounded, options.padding, trialOffsets, trialTurns, &used)) {
-                used = 2 * height; // a chart wider than the atlas: shrink
-            }
+            int used = 2 * height; // a chart wider than the atlas: shrink
+            if (packCharts(charts, float(trial), width, kUnbounded, options.padding, 1, attempt)) used = attempt.usedHeight;
             log::debug("atlas: " + std::to_string(trial) + " texels per unit take " + std::to_string(used) + " rows");
             if (used <= height && trial > fits) {
                 fits = trial;
-                offsets = trialOffsets;
-                turns = trialTurns;
+                packing = attempt;
                 if (used >= kFullEnough * height) break;
             }
             const double next = trial * std::sqrt(double(height) / std::max(used, 1)) * (used <= height ? 1.0 : 0.99);
@@ -169,8 +181,10 @@ float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, int
         }
         density = float(fits);
     }
+    pages = packing.pageCount;
     for (std::size_t c = 0; c < charts.size(); ++c) {
-        placeChart(charts[c], density, offsets[c], turns[c]);
+        placeChart(charts[c], density, packing.offsets[c], packing.turns[c]);
+        charts[c].page = std::uint32_t(packing.pages[c]);
     }
     return density;
 }
@@ -178,9 +192,9 @@ float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, int
 // Conservative coverage of every placed triangle, each texel's sample and owner, and the
 // triangles left owning no texel (after taking texels from triangles that own several).
 std::vector<std::pair<std::size_t, std::size_t>> coverTexels(const std::vector<FlatChart>& charts, int width,
-                                                             int height, std::vector<TexelOwner>& owner,
+                                                             int height, int pages, std::vector<TexelOwner>& owner,
                                                              std::map<std::pair<int, int>, int>& owned) {
-    owner.assign(std::size_t(width) * height, TexelOwner{});
+    owner.assign(std::size_t(width) * height * pages, TexelOwner{});
     owned.clear();
     for (std::size_t c = 0; c < charts.size(); ++c) {
         const FlatChart& chart = charts[c];
@@ -195,7 +209,7 @@ std::vector<std::pair<std::size_t, std::size_t>> coverTexels(const std::vector<F
                     const glm::vec2 centre(x + 0.5f, y + 0.5f);
                     const glm::vec3 b = closestBarycentric(p, centre);
                     const float d = glm::distance(b.x * p[0] + b.y * p[1] + b.z * p[2], centre);
-                    TexelOwner& o = owner[std::size_t(y) * width + x];
+                    TexelOwner& o = owner[(std::size_t(chart.page) * height + y) * width + x];
                     if (o.chart >= 0 && o.chart != int(c)) o.otherChart = int(c);
                     if (d < o.distance) {
                         if (o.chart >= 0 && o.chart != int(c)) o.otherChart = o.chart;
@@ -221,7 +235,7 @@ std::vector<std::pair<std::size_t, std::size_t>> coverTexels(const std::vector<F
             bool taken = false;
             for (int y = std::max(0, int(std::floor(lo.y))); !taken && y <= std::min(height - 1, int(std::floor(hi.y))); ++y) {
                 for (int x = std::max(0, int(std::floor(lo.x))); !taken && x <= std::min(width - 1, int(std::floor(hi.x))); ++x) {
-                    TexelOwner& o = owner[std::size_t(y) * width + x];
+                    TexelOwner& o = owner[(std::size_t(chart.page) * height + y) * width + x];
                     if (o.chart != int(c) || !overlapsTexel(p, float(x), float(y))) continue;
                     int& count = owned[{o.chart, o.face}];
                     if (count <= 1) continue;
@@ -270,14 +284,17 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
     // finished atlas without moving anything else; alone, they own every texel they touch.
     std::vector<TexelOwner> owner;
     std::map<std::pair<int, int>, int> owned;
-    int width = options.size, height = options.size;
-    const float density = packAtlas(atlas.charts, options, width, height);
-    ChartPacker packer(width, height, options.padding);
-    for (const FlatChart& c : atlas.charts) packer.occupy(c);
-    log::debug("atlas: charts take " + std::to_string(double(packer.occupiedTexels()) / (double(width) * height)) +
+    int width = options.size, height = options.size, pages = 1;
+    const float density = packAtlas(atlas.charts, options, width, height, pages);
+    std::vector<ChartPacker> packers(std::size_t(pages), ChartPacker(width, height, options.padding));
+    for (const FlatChart& c : atlas.charts) packers[c.page].occupy(c);
+    std::size_t occupied = 0;
+    for (const ChartPacker& p : packers) occupied += p.occupiedTexels();
+    log::debug("atlas: charts take " + std::to_string(double(occupied) / (double(width) * height * pages)) +
                " of the atlas with their padding");
     for (int round = 0;; ++round) {
-        std::vector<std::pair<std::size_t, std::size_t>> uncovered = coverTexels(atlas.charts, width, height, owner, owned);
+        std::vector<std::pair<std::size_t, std::size_t>> uncovered =
+            coverTexels(atlas.charts, width, height, pages, owner, owned);
         if (uncovered.empty() || round == kCoverageRounds) {
             st.uncoveredTriangles = uncovered.size();
             break;
@@ -296,10 +313,13 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
         for (FlatChart& single : singles) {
             glm::vec2 offset;
             int turns = 0;
-            if (!packer.place(single, density, offset, turns)) {
+            std::uint32_t page = 0;
+            while (page < packers.size() && !packers[page].place(single, density, offset, turns)) ++page;
+            if (page == packers.size()) {
                 continue; // no room left: the triangle stays uncovered and is counted
             }
             placeChart(single, density, offset, turns);
+            single.page = page;
             atlas.charts.push_back(std::move(single));
         }
     }
@@ -307,7 +327,8 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
     TexelMaps& maps = atlas.maps;
     maps.width = width;
     maps.height = height;
-    const std::size_t texels = std::size_t(width) * height;
+    maps.pages = pages;
+    const std::size_t texels = std::size_t(width) * height * pages;
 
     // 4. Maps from the owners.
     maps.position.assign(texels, glm::vec3(0.0f));
@@ -340,14 +361,14 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
     }
     // One ring of dilation, so bilinear lookups at chart borders never read empty texels.
     std::vector<std::uint8_t> before = maps.valid;
-    for (int y = 0; y < height; ++y) {
+    for (int y = 0; y < height * pages; ++y) { // pages stacked: a page's rows never reach into the next
         for (int x = 0; x < width; ++x) {
             const std::size_t t = std::size_t(y) * width + x;
             if (before[t]) continue;
             for (int dy = -1; dy <= 1 && !maps.valid[t]; ++dy) {
                 for (int dx = -1; dx <= 1 && !maps.valid[t]; ++dx) {
                     const int nx = x + dx, ny = y + dy;
-                    if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+                    if (nx < 0 || nx >= width || ny / height != y / height || ny < 0) continue;
                     const std::size_t s = std::size_t(ny) * width + nx;
                     if (before[s] != 1) continue;
                     maps.position[t] = maps.position[s];
@@ -363,6 +384,7 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
 
     // 5. Per-vertex atlas uvs (vertices split where charts meet) and the statistics.
     atlas.meshes.resize(scene.meshes.size());
+    atlas.vertexPages.resize(scene.meshes.size());
     std::vector<std::map<std::pair<std::uint32_t, std::size_t>, std::uint32_t>> vertexOf(scene.meshes.size());
     double stretchWeighted = 0.0, areaTotal = 0.0;
     for (std::size_t c = 0; c < atlas.charts.size(); ++c) {
@@ -381,6 +403,7 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
                     out.positions.push_back(mesh.positions[tri[k]]);
                     out.normals.push_back(mesh.normals[tri[k]]);
                     out.uvs.push_back(chart.uv[3 * i + k] / glm::vec2(float(width), float(height)));
+                    atlas.vertexPages[chart.mesh].push_back(chart.page);
                 }
                 split[k] = it->second;
             }
@@ -399,6 +422,7 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
         out.animation = scene.meshes[m].animation;
     }
     st.charts = atlas.charts.size();
+    st.pages = pages;
     st.meanStretch = areaTotal > 0.0 ? stretchWeighted / areaTotal : 1.0;
     st.utilization = double(covered) / double(texels);
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -406,7 +430,7 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
 }
 
 Image chartImage(const TexelMaps& maps) {
-    Image img(maps.width, maps.height);
+    Image img(maps.width, maps.height * maps.pages); // pages stacked top to bottom
     for (std::size_t t = 0; t < maps.valid.size(); ++t) {
         if (!maps.valid[t]) continue;
         std::uint32_t h = std::uint32_t(maps.chart[t]) * 2654435761u;

@@ -21,7 +21,8 @@ namespace bl::atlas {
 
 struct AtlasOptions {
     int size = 2048;             // atlas side in texels (when texelsPerUnit is 0)
-    float texelsPerUnit = 0.0f;  // fixed density instead: the atlas grows to fit it
+    float texelsPerUnit = 0.0f;  // fixed density instead: the page grows to fit it, up to pageSize,
+    int pageSize = 4096;         // then the charts spill onto further pages of this size
     int padding = 2;             // texels between charts
     ChartingOptions charting;    // normal cone and seam-length weight of the charts
     float maxStretch = 1.5f;     // charts above this L2 stretch are split
@@ -30,6 +31,7 @@ struct AtlasOptions {
 struct AtlasStats {
     double utilization = 0.0; // covered texels / all texels
     std::size_t charts = 0;
+    int pages = 1;
     double meanStretch = 0.0; // area-weighted L2 stretch
     double maxStretch = 0.0;  // worst chart
     std::size_t flippedTriangles = 0;
@@ -41,9 +43,11 @@ struct AtlasStats {
     double seconds = 0.0;
 };
 
+// Per-texel maps of all pages, stacked: texel (x, y) of page p is at index (p * height + y) * width + x.
 struct TexelMaps {
-    int width = 0;
+    int width = 0;  // of one page
     int height = 0;
+    int pages = 1;
     std::vector<glm::vec3> position;
     std::vector<glm::vec3> normal;
     std::vector<std::uint32_t> material;
@@ -57,6 +61,7 @@ struct Atlas {
     float texelsPerUnit = 0.0f;
     std::vector<FlatChart> charts;     // uv in texel units of the atlas after packing
     std::vector<Mesh> meshes;          // the scene's meshes with atlas uvs in [0,1]^2, vertices split on seams
+    std::vector<std::vector<std::uint32_t>> vertexPages; // per mesh, the page of each vertex's uv
     TexelMaps maps;
     AtlasStats stats;
 };

@@ -282,8 +282,8 @@ std::size_t ChartPacker::occupiedTexels() const {
     return n;
 }
 
-bool packCharts(const std::vector<FlatChart>& charts, float density, int width, int height, int padding,
-                std::vector<glm::vec2>& offsets, std::vector<int>& turns, int* usedHeight) {
+bool packCharts(const std::vector<FlatChart>& charts, float density, int width, int height, int padding, int maxPages,
+                Packing& out) {
     std::vector<double> area(charts.size(), 0.0);
     for (std::size_t i = 0; i < charts.size(); ++i) {
         glm::vec2 lo, hi;
@@ -293,13 +293,23 @@ bool packCharts(const std::vector<FlatChart>& charts, float density, int width, 
     std::vector<std::size_t> order(charts.size());
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return area[a] > area[b]; });
-    offsets.assign(charts.size(), glm::vec2(0.0f));
-    turns.assign(charts.size(), 0);
-    ChartPacker packer(width, height, padding);
+    out.offsets.assign(charts.size(), glm::vec2(0.0f));
+    out.turns.assign(charts.size(), 0);
+    out.pages.assign(charts.size(), 0);
+    std::vector<ChartPacker> pages;
     for (std::size_t i : order) {
-        if (!packer.place(charts[i], density, offsets[i], turns[i])) return false;
+        int page = 0;
+        while (page < int(pages.size()) && !pages[std::size_t(page)].place(charts[i], density, out.offsets[i], out.turns[i])) ++page;
+        if (page == int(pages.size())) {
+            // A fresh page: if the chart does not fit there, it fits nowhere.
+            if (page == maxPages) return false;
+            pages.emplace_back(width, height, padding);
+            if (!pages.back().place(charts[i], density, out.offsets[i], out.turns[i])) return false;
+        }
+        out.pages[i] = page;
     }
-    if (usedHeight) *usedHeight = packer.usedHeight();
+    out.pageCount = int(pages.size());
+    out.usedHeight = pages.empty() ? 0 : pages.back().usedHeight();
     return true;
 }
 

@@ -49,10 +49,19 @@ private:
     std::vector<std::vector<std::pair<int, int>>> mColumns; // occupied row intervals per column
 };
 
-// Places every oriented chart, largest first, at `density` into a width x height atlas; false if
-// one does not fit. `usedHeight` (optional) receives the rows the packing reaches.
-bool packCharts(const std::vector<FlatChart>& charts, float density, int width, int height, int padding,
-                std::vector<glm::vec2>& offsets, std::vector<int>& turns, int* usedHeight = nullptr);
+// Where packCharts put each chart: uv -> page texel turnChart(uv, turns, extent) * density + offset.
+struct Packing {
+    std::vector<glm::vec2> offsets;
+    std::vector<int> turns;
+    std::vector<int> pages; // page of each chart
+    int pageCount = 0;
+    int usedHeight = 0;     // rows the last page's charts reach
+};
+
+// Places every oriented chart, largest first, at `density` on width x height pages, each on the
+// first page with room, opening at most `maxPages`; false if the charts do not fit.
+bool packCharts(const std::vector<FlatChart>& charts, float density, int width, int height, int padding, int maxPages,
+                Packing& out);
 
 // An oriented chart's uv at `density`, turned and offset: atlas texel coordinates.
 void placeChart(FlatChart& chart, float density, glm::vec2 offset, int turns);

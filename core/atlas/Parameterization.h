@@ -13,6 +13,7 @@ namespace bl::atlas {
 
 struct FlatChart {
     std::uint32_t mesh = 0;
+    std::uint32_t page = 0; // atlas page, once packed
     std::vector<std::uint32_t> faces;
     std::vector<glm::vec2> uv; // 3 per face (corner order), in world units
     bool planar = false;

@@ -94,6 +94,14 @@ atlas_report)
     done
     grep -q '"charts": 16' "$out/atlas.json" || fail "the Cornell box should give 16 charts"
     grep -q '"overlapping_texels": 0' "$out/atlas.json" || fail "overlapping texels"
+    # A fixed density spills onto pages; one no page or memory can hold is a clear error.
+    "$bl" atlas data/cornell-box/cornell.toml --texels-per-unit 0.4 --page-size 256 --report "$out/pages.json" \
+        || fail "paged atlas failed"
+    grep -q '"pages": [2-9]' "$out/pages.json" || fail "0.4 texels per unit should need several 256^2 pages"
+    expected="more than the 256 M an atlas may have"
+    expect_error "$bl" atlas data/cornell-box/cornell.toml --texels-per-unit 200
+    expected="larger than a 256^2 page"
+    expect_error "$bl" atlas data/cornell-box/cornell.toml --texels-per-unit 0.5 --page-size 256
     ;;
 *)
     fail "unknown case $case_name"

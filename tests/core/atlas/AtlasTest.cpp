@@ -3,10 +3,13 @@
 // surfaces, texel areas summing to the surface area) on the Cornell box, a scanned bunny and a
 // deliberately broken mesh.
 #include "atlas/Atlas.h"
+#include "base/Error.h"
 #include "scene/SceneLoader.h"
 #include "support/TestFiles.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 using namespace bl;
 using namespace bl::atlas;
@@ -52,6 +55,36 @@ void expectInvariants(const Scene& scene, const Atlas& a, double maxStretch) {
         }
     }
     EXPECT_EQ(triangles, scene.triangleCount());
+    // Bilinear lookups anywhere on a triangle (corners, edge midpoints, centroid) read only texels
+    // of that triangle's own chart, covered or dilated: no empty texel, no neighbour's radiance.
+    const int w = a.maps.width, h = a.maps.height;
+    std::size_t badLookups = 0;
+    ASSERT_EQ(a.vertexPages.size(), a.meshes.size());
+    for (std::size_t mi = 0; mi < a.meshes.size(); ++mi) {
+        const Mesh& m = a.meshes[mi];
+        ASSERT_EQ(a.vertexPages[mi].size(), m.positions.size());
+        for (const glm::uvec3& t : m.triangles) {
+            const std::uint32_t page = a.vertexPages[mi][t.x];
+            ASSERT_TRUE(a.vertexPages[mi][t.y] == page && a.vertexPages[mi][t.z] == page);
+            ASSERT_LT(page, std::uint32_t(a.maps.pages));
+            const std::size_t pageStart = std::size_t(page) * h * w;
+            const glm::vec2 uv[3] = {m.uvs[t.x], m.uvs[t.y], m.uvs[t.z]};
+            const glm::vec2 centroid = (uv[0] + uv[1] + uv[2]) / 3.0f;
+            const int chart = a.maps.chart[pageStart + std::size_t(std::floor(centroid.y * h)) * w + std::size_t(std::floor(centroid.x * w))];
+            for (int k = 0; k < 7; ++k) {
+                const glm::vec2 p = k < 3 ? uv[k] : (k < 6 ? 0.5f * (uv[k - 3] + uv[(k - 2) % 3]) : centroid);
+                const glm::ivec2 base = glm::ivec2(glm::floor(p * glm::vec2(w, h) - 0.5f));
+                for (int dy = 0; dy <= 1; ++dy) {
+                    for (int dx = 0; dx <= 1; ++dx) {
+                        const int x = std::clamp(base.x + dx, 0, w - 1), y = std::clamp(base.y + dy, 0, h - 1);
+                        const std::size_t texel = pageStart + std::size_t(y) * w + x;
+                        badLookups += a.maps.valid[texel] == 0 || a.maps.chart[texel] != chart;
+                    }
+                }
+            }
+        }
+    }
+    EXPECT_EQ(badLookups, 0u);
 }
 
 } // namespace
@@ -78,6 +111,24 @@ TEST(Atlas, CornellBoxEachWallOneChart) {
     std::size_t emitting = 0;
     for (std::size_t t = 0; t < a.maps.valid.size(); ++t) emitting += a.maps.valid[t] == 1 && a.maps.emission[t].x == 17.0f;
     EXPECT_GT(emitting, 0u);
+}
+
+TEST(Atlas, FixedDensitySpillsOntoPages) {
+    // 0.4 texels per unit on 256^2 pages: the box's 16 charts need several pages.
+    Scene s = loadScene(bl::test::sourcePath("data/cornell-box/cornell.toml"));
+    AtlasOptions o;
+    o.texelsPerUnit = 0.4f;
+    o.pageSize = 256;
+    Atlas a = buildAtlas(s, o);
+    EXPECT_EQ(a.maps.width, 256);
+    EXPECT_GT(a.maps.pages, 1);
+    EXPECT_EQ(a.stats.pages, a.maps.pages);
+    EXPECT_EQ(a.stats.charts, 16u);
+    EXPECT_FLOAT_EQ(a.texelsPerUnit, 0.4f);
+    expectInvariants(s, a, 1.0001);
+    // A density no page can hold is an error, not a crash.
+    o.texelsPerUnit = 0.5f; // the back wall alone is 278 texels wide
+    EXPECT_THROW(buildAtlas(s, o), Error);
 }
 
 TEST(Atlas, ScannedBunny) {

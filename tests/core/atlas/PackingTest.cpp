@@ -121,14 +121,13 @@ TEST(Packing, ManyChartsNeverOverlapAndReportTheirHeight) {
     std::vector<FlatChart> charts;
     for (int i = 0; i < 120; ++i) charts.push_back(i % 3 ? square(side(rng)) : ring(side(rng) + 10.0f, 6.0f));
     orientCharts(charts);
-    std::vector<glm::vec2> offsets;
-    std::vector<int> turns;
-    int used = 0;
-    ASSERT_TRUE(packCharts(charts, 1.0f, 256, 100000, 2, offsets, turns, &used));
+    Packing packing;
+    ASSERT_TRUE(packCharts(charts, 1.0f, 256, 100000, 2, 1, packing));
+    EXPECT_EQ(packing.pageCount, 1);
     std::map<Texel, std::size_t> owner;
     int top = 0;
     for (std::size_t i = 0; i < charts.size(); ++i) {
-        placeChart(charts[i], 1.0f, offsets[i], turns[i]);
+        placeChart(charts[i], 1.0f, packing.offsets[i], packing.turns[i]);
         const TexelMask m = rasterizeMask(charts[i].uv);
         top = std::max(top, m.y0 + m.height);
         EXPECT_GE(m.x0, 0);
@@ -138,7 +137,27 @@ TEST(Packing, ManyChartsNeverOverlapAndReportTheirHeight) {
             EXPECT_TRUE(fresh) << "charts " << it->second << " and " << i << " share texel " << t.first << "," << t.second;
         }
     }
-    EXPECT_EQ(used, top);
+    EXPECT_EQ(packing.usedHeight, top);
     // Too narrow an atlas is refused, not overrun.
-    EXPECT_FALSE(packCharts(charts, 1.0f, 30, 100000, 2, offsets, turns));
+    EXPECT_FALSE(packCharts(charts, 1.0f, 30, 100000, 2, 1, packing));
+}
+
+TEST(Packing, ChartsSpillOntoFurtherPages) {
+    // Twelve 30-texel squares on 64^2 pages with padding 2: two fit side by side and two above
+    // (4 per page), so three pages; with two pages allowed the packing is refused.
+    std::vector<FlatChart> charts(12, square(30.0f));
+    orientCharts(charts);
+    Packing packing;
+    ASSERT_TRUE(packCharts(charts, 1.0f, 64, 64, 2, 8, packing));
+    EXPECT_EQ(packing.pageCount, 3);
+    std::map<std::pair<int, Texel>, std::size_t> owner;
+    for (std::size_t i = 0; i < charts.size(); ++i) {
+        FlatChart placed = charts[i];
+        placeChart(placed, 1.0f, packing.offsets[i], packing.turns[i]);
+        const TexelMask m = rasterizeMask(placed.uv);
+        EXPECT_GE(m.y0, 0);
+        EXPECT_LE(m.y0 + m.height, 64);
+        for (const Texel& t : maskTexels(m)) EXPECT_TRUE(owner.emplace(std::make_pair(packing.pages[i], t), i).second);
+    }
+    EXPECT_FALSE(packCharts(charts, 1.0f, 64, 64, 2, 2, packing));
 }
