@@ -3,6 +3,7 @@
 #include "base/Error.h"
 #include "base/Json.h"
 #include "cli/Commands.h"
+#include "cli/FiniteRange.h"
 #include "image/ImageIO.h"
 #include "scene/SceneLoader.h"
 
@@ -22,7 +23,7 @@ void addAtlasCommand(CLI::App& app, Action& action) {
     CLI::App* cmd = app.add_subcommand("atlas", "build the texture atlas of a scene (charts, uvs, texel maps)");
     cmd->add_option("scene", o->scene, "scene file (.toml, or a bare .obj/.ply)")->required();
     auto* tpu = cmd->add_option("--texels-per-unit", o->atlas.texelsPerUnit, "fixed texel density (the atlas grows)")
-                    ->check(CLI::Range(1e-9f, 1e9f));
+                    ->check(finiteRange(1e-9, 1e9));
     auto* size = cmd->add_option("--size", o->atlas.size, "atlas side in texels (density chosen to fill it)")
                      ->check(CLI::Range(16, 16384));
     tpu->excludes(size);
@@ -30,11 +31,11 @@ void addAtlasCommand(CLI::App& app, Action& action) {
         ->check(CLI::Range(64, 16384));
     cmd->add_option("--padding", o->atlas.padding, "texels between charts")->check(CLI::Range(2, 64));
     cmd->add_option("--cone", o->atlas.charting.coneDegrees, "charting normal cone (degrees)")
-        ->check(CLI::Range(1.0f, 89.0f));
+        ->check(finiteRange(1.0, 89.0));
     cmd->add_option("--seam-weight", o->atlas.charting.seamWeight, "charting cost of seam length against normal deviation")
-        ->check(CLI::Range(0.0f, 100.0f));
+        ->check(finiteRange(0.0, 100.0));
     cmd->add_option("--max-stretch", o->atlas.maxStretch, "split charts above this L2 stretch")
-        ->check(CLI::Range(1.0f, 100.0f));
+        ->check(finiteRange(1.0, 100.0));
     cmd->add_option("-o,--out", o->out, "PNG of the charts in colour");
     cmd->add_option("--report", o->report, "JSON report (utilization, charts, stretch, flips, overlaps, coverage)");
     cmd->callback([o, &action] {

@@ -2,6 +2,7 @@
 #include "base/Error.h"
 #include "base/Json.h"
 #include "cli/Commands.h"
+#include "cli/FiniteRange.h"
 #include "image/ImageIO.h"
 #include "image/Metrics.h"
 
@@ -95,7 +96,7 @@ void addCompareCommand(CLI::App& app, Action& action) {
     cmd->add_option("--metric", o->metrics, "metrics to print (default all): mse rmse relmse smape mae mean_ratio "
                                             "block_ratio_rms block_ratio_mean block_ratio_max");
     cmd->add_option("--layer", o->layer, "EXR layer to compare (default: the main RGB)");
-    cmd->add_option("--epsilon", o->metricOptions.relEpsilon, "epsilon of relMSE")->check(CLI::Range(0.0, 1e30));
+    cmd->add_option("--epsilon", o->metricOptions.relEpsilon, "epsilon of relMSE")->check(finiteRange(0.0, 1e30));
     cmd->add_option("--block", o->metricOptions.blockSize, "block size of the block-mean ratios")
         ->check(CLI::Range(1, 4096));
     cmd->add_option("--heatmap", o->heatmap, "write a false-colour error map (PNG)");

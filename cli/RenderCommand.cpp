@@ -3,6 +3,7 @@
 #include "base/Error.h"
 #include "base/Log.h"
 #include "cli/Commands.h"
+#include "cli/FiniteRange.h"
 #include "cli/OutputFiles.h"
 #include "modes/Registry.h"
 #include "scene/SceneLoader.h"
@@ -142,11 +143,11 @@ void addRenderCommand(CLI::App& app, Action& action) {
     auto* its = cmd->add_option("--iterations", o->iterations, "iterations (units of progressive work)")
                     ->check(CLI::Range(1u, 1u << 30));
     auto* secs = cmd->add_option("--time", o->seconds, "render for this many seconds of wall time")
-                     ->check(CLI::Range(1e-3, 1e7));
+                     ->check(finiteRange(1e-3, 1e7));
     spp->excludes(its)->excludes(secs);
     its->excludes(secs);
     cmd->add_option("--seed", o->seed, "run seed");
-    cmd->add_option("--scene-time", o->time, "scene time in seconds (animated scenes)");
+    cmd->add_option("--scene-time", o->time, "scene time in seconds (animated scenes)")->check(finiteRange(-1e9, 1e9));
     cmd->add_option("--device", o->device, "Vulkan device: index or name substring (default: a GPU, else lavapipe)");
     cmd->add_flag("--validation", o->validation, "enable Vulkan validation layers; errors fail the run");
     cmd->add_option("--set", o->assignments, "mode parameter key=value (repeatable)");

@@ -102,6 +102,11 @@ atlas_report)
     expect_error "$bl" atlas data/cornell-box/cornell.toml --texels-per-unit 200
     expected="larger than a 256^2 page"
     expect_error "$bl" atlas data/cornell-box/cornell.toml --texels-per-unit 0.5 --page-size 256
+    # NaN passes CLI11's Range; every floating-point option refuses it by name.
+    expected="--cone: value 'nan' is not finite"
+    expect_error "$bl" atlas data/cornell-box/cornell.toml --cone nan
+    expected="--texels-per-unit: value 'inf' is not finite"
+    expect_error "$bl" atlas data/cornell-box/cornell.toml --texels-per-unit inf
     ;;
 *)
     fail "unknown case $case_name"
