@@ -368,7 +368,7 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
             for (int dy = -1; dy <= 1 && !maps.valid[t]; ++dy) {
                 for (int dx = -1; dx <= 1 && !maps.valid[t]; ++dx) {
                     const int nx = x + dx, ny = y + dy;
-                    if (nx < 0 || nx >= width || ny / height != y / height || ny < 0) continue;
+                    if (nx < 0 || nx >= width || ny < 0 || ny / height != y / height) continue; // same page only
                     const std::size_t s = std::size_t(ny) * width + nx;
                     if (before[s] != 1) continue;
                     maps.position[t] = maps.position[s];
