@@ -213,9 +213,15 @@ Context::Context(const ContextOptions& options) {
         mPhysical = chosen.device;
         mInfo = chosen.info;
         mQueueFamily = chosen.queueFamily;
-        VkPhysicalDeviceProperties props;
-        vkGetPhysicalDeviceProperties(mPhysical, &props);
-        mLimits = props.limits;
+        VkPhysicalDeviceMaintenance4Properties maintenance4{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES};
+        VkPhysicalDeviceMaintenance3Properties maintenance3{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES, &maintenance4};
+        VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &maintenance3};
+        vkGetPhysicalDeviceProperties2(mPhysical, &props);
+        mLimits = props.properties.limits;
+        mMaxAllocationBytes = maintenance3.maxMemoryAllocationSize;
+        mMaxBufferBytes = maintenance4.maxBufferSize;
 
         // Features every mode may rely on; missing required ones make a clear error.
         VkPhysicalDeviceVulkan13Features have13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};

@@ -46,6 +46,14 @@ public:
     const VkPhysicalDeviceLimits& limits() const { return mLimits; }
     bool bufferDeviceAddress() const { return mBufferDeviceAddress; }
     bool geometryShader() const { return mGeometryShader; }
+    // The largest single vkAllocateMemory this device accepts
+    // (VkPhysicalDeviceMaintenance3Properties::maxMemoryAllocationSize). Larger allocations may
+    // fail or, on some drivers, succeed and misbehave; a pool must split or refuse before that.
+    VkDeviceSize maxAllocationBytes() const { return mMaxAllocationBytes; }
+    // The largest VkBuffer this device can create (VkPhysicalDeviceMaintenance4Properties::
+    // maxBufferSize, Vulkan 1.3 core). A buffer is also bounded by maxAllocationBytes() since each
+    // Buffer owns its memory; use the smaller of the two as a buffer's size limit.
+    VkDeviceSize maxBufferBytes() const { return mMaxBufferBytes; }
 
     // Records commands, submits them and waits for completion. Everything a command buffer uses
     // must stay alive until this returns, which is the simple lifetime rule of this codebase.
@@ -87,6 +95,8 @@ private:
     VkPhysicalDeviceLimits mLimits{};
     bool mBufferDeviceAddress = false;
     bool mGeometryShader = false;
+    VkDeviceSize mMaxAllocationBytes = 0;
+    VkDeviceSize mMaxBufferBytes = 0;
 
     mutable std::mutex mMessageMutex;
     std::vector<std::string> mErrors;

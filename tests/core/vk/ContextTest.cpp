@@ -26,6 +26,13 @@ TEST_F(VkCore, DeviceIsDescribed) {
     EXPECT_GT(ctx().limits().timestampPeriod, 0.0f);
 }
 
+TEST_F(VkCore, AllocationAndBufferLimitsComeFromTheDevice) {
+    // Vulkan guarantees at least 2^30 bytes for both (the spec's required limits table).
+    constexpr VkDeviceSize kSpecMinimumBytes = VkDeviceSize(1) << 30;
+    EXPECT_GE(ctx().maxAllocationBytes(), kSpecMinimumBytes);
+    EXPECT_GE(ctx().maxBufferBytes(), kSpecMinimumBytes);
+}
+
 TEST_F(VkCore, BufferRoundTrip) {
     std::vector<float> data(1000);
     std::iota(data.begin(), data.end(), 0.5f);
