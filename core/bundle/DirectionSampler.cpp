@@ -40,10 +40,12 @@ glm::vec2 DirectionSampler::unitSquare(std::uint32_t index) const {
         return (glm::vec2(float(cell % side), float(cell / side)) + jitter) / float(side);
     }
     default: {
-        // Halton (2, 3) with a Cranley-Patterson rotation per seed (seed 0: the plain sequence).
+        // Halton in bases kBundleDirectionBases (5, 7: not the camera jitter's, so the two stay
+        // independent), with a Cranley-Patterson rotation per seed (seed 0: the plain sequence).
         glm::vec2 shift = mSeed ? glm::vec2(shader::blHashRandom(mSeed, 0x7f4a7c15u), shader::blHashRandom(mSeed, 0x1b873593u))
                                 : glm::vec2(0.0f);
-        glm::vec2 p(float(radicalInverse(2, index + 1)), float(radicalInverse(3, index + 1)));
+        glm::vec2 p(float(radicalInverse(kBundleDirectionBases[0], index + 1)),
+                    float(radicalInverse(kBundleDirectionBases[1], index + 1)));
         p += shift;
         return p - glm::floor(p);
     }

@@ -35,9 +35,11 @@ public:
     float pdf(const glm::vec3& omega) const;
     // p_r(d) = q(d) + q(-d): density of d among the directions a point in d's hemisphere uses.
     float hemispherePdf(const glm::vec3& d) const { return pdf(d) + pdf(-d); }
+    // The two numbers in [0, 1)^2 the index-th direction is made from (tests check that they are
+    // independent of the camera's pixel jitter, core/sampling/PixelSamples.h).
+    glm::vec2 unitSquare(std::uint32_t index) const;
 
 private:
-    glm::vec2 unitSquare(std::uint32_t index) const;
 
     DirectionSequence mSequence;
     std::uint32_t mSeed;

@@ -18,4 +18,11 @@ inline double radicalInverse(std::uint32_t base, std::uint64_t index) {
     return result;
 }
 
+// Which Halton dimensions each user draws from. A progressive iteration k samples one integrand
+// over (pixel footprint x bundle direction); the k-th point of the 4D Halton sequence (2, 3, 5, 7)
+// keeps its four numbers independent. Two users sharing a base would be correlated: with base 2
+// in both, jitter.x equalled the direction's u.x in every even iteration.
+inline constexpr std::uint32_t kPixelJitterBases[2] = {2, 3};
+inline constexpr std::uint32_t kBundleDirectionBases[2] = {5, 7};
+
 } // namespace bl

@@ -1,6 +1,6 @@
 // Where inside its pixel the k-th sample of a progressive rasterizer lands: the pixel centre
-// first, then a Halton (2, 3) sequence shifted by 1/2 (a Cranley-Patterson rotation, so k = 0 is
-// the centre). Iterating converges to the box-filtered pixel (CONVENTIONS.md).
+// first, then a Halton sequence in bases kPixelJitterBases (2, 3) shifted by 1/2 (a
+// Cranley-Patterson rotation, so k = 0 is the centre). Iterating converges to the box-filtered pixel (CONVENTIONS.md).
 #pragma once
 
 #include "sampling/Halton.h"
@@ -13,7 +13,8 @@ inline glm::vec2 pixelSamplePosition(std::uint32_t k, bool jitter = true) {
     if (!jitter || k == 0) {
         return glm::vec2(0.5f);
     }
-    glm::vec2 p(static_cast<float>(radicalInverse(2, k)) + 0.5f, static_cast<float>(radicalInverse(3, k)) + 0.5f);
+    glm::vec2 p(static_cast<float>(radicalInverse(kPixelJitterBases[0], k)) + 0.5f,
+                static_cast<float>(radicalInverse(kPixelJitterBases[1], k)) + 0.5f);
     return p - glm::floor(p);
 }
 

@@ -2,6 +2,7 @@
 // their densities (chi-square), and p_r = q(d) + q(-d) (EQUATIONS.md section 1, [TO12] Eq. 2).
 #include "bundle/DirectionSampler.h"
 #include "image/ImageIO.h"
+#include "sampling/PixelSamples.h"
 #include "support/TestFiles.h"
 
 #include <gtest/gtest.h>
@@ -92,4 +93,44 @@ TEST(DirectionSampler, ImportanceFollowsEquationTwo) {
         }
     }
     EXPECT_LT(chiSquare(observed, expected), 181.0); // 0.999 quantile of chi-square(127)
+}
+
+// A skylight iteration pairs the k-th camera jitter with the k-th bundle direction: together they
+// sample one 4D integrand (pixel footprint x directions), so their numbers must be independent.
+// The same Halton base in both would tie jitter.x to the direction's polar angle (every even k
+// gives jitter.x == u.x when both use base 2).
+TEST(DirectionSampler, HaltonDirectionsAreIndependentOfPixelJitter) {
+    const std::uint32_t iterations = 1024;
+    for (std::uint32_t seed : {0u, 1u, 77u}) {
+        DirectionSampler directions(DirectionSequence::Halton, seed);
+        std::uint32_t equal = 0;
+        // Pearson correlation of every (jitter component, direction component) pair.
+        double sum[4] = {}, sumSq[4] = {}, cross[2][2] = {};
+        for (std::uint32_t k = 0; k < iterations; ++k) {
+            const glm::vec2 jitter = pixelSamplePosition(k);
+            const glm::vec2 u = directions.unitSquare(k);
+            equal += (jitter.x == u.x) + (jitter.y == u.y) + (jitter.x == u.y) + (jitter.y == u.x);
+            const double v[4] = {jitter.x, jitter.y, u.x, u.y};
+            for (int i = 0; i < 4; ++i) {
+                sum[i] += v[i];
+                sumSq[i] += v[i] * v[i];
+            }
+            for (int a = 0; a < 2; ++a) {
+                for (int b = 0; b < 2; ++b) cross[a][b] += v[a] * v[2 + b];
+            }
+        }
+        EXPECT_EQ(equal, 0u) << "seed " << seed << ": jitter and direction numbers coincide";
+        // Independent uniform pairs: r ~ N(0, 1/sqrt(1024) = 0.031); 0.15 is ~5 sigma.
+        const double kMaxCorrelation = 0.15;
+        const double n = iterations;
+        for (int a = 0; a < 2; ++a) {
+            for (int b = 0; b < 2; ++b) {
+                const double covariance = cross[a][b] / n - (sum[a] / n) * (sum[2 + b] / n);
+                const double sa = std::sqrt(sumSq[a] / n - (sum[a] / n) * (sum[a] / n));
+                const double sb = std::sqrt(sumSq[2 + b] / n - (sum[2 + b] / n) * (sum[2 + b] / n));
+                EXPECT_LT(std::abs(covariance / (sa * sb)), kMaxCorrelation)
+                    << "seed " << seed << ": jitter[" << a << "] vs direction u[" << b << "]";
+            }
+        }
+    }
 }
