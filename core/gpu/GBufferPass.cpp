@@ -20,7 +20,7 @@ GBufferPass::GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uin
                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT});
     }
     mDepth = vk::GpuImage(ctx, {width, height, 1, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
-    mCamera = vk::Buffer(ctx, sizeof(shader::GpuCamera), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
+    mCamera = RecordedUniform<shader::GpuCamera>(ctx);
 
     const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     mFrameLayout = vk::makeDescriptorSetLayout(
@@ -60,8 +60,8 @@ GBufferPass::GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uin
 
 void GBufferPass::record(VkCommandBuffer cmd, const shader::GpuCamera& camera, glm::vec2 jitterNdc, double time,
                          vk::GpuTimer* timer) {
-    std::memcpy(mCamera.data(), &camera, sizeof(camera));
     std::uint32_t scope = timer ? timer->start(cmd, "gbuffer") : 0;
+    mCamera.record(cmd, camera);
 
     vk::RenderTargets targets;
     for (vk::GpuImage& a : mAttachments) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "gpu/GpuScene.h"
+#include "gpu/RecordedUniform.h"
 #include "vk/Descriptors.h"
 #include "vk/GpuTimer.h"
 #include "vk/Pipeline.h"
@@ -20,7 +21,8 @@ public:
 
     GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t width, std::uint32_t height);
 
-    // Updates the camera (host-visible, so only between submissions) and records the pass.
+    // Records the camera's upload and the pass: several records in one command buffer each see
+    // their own camera, and cameraBuffer() holds the last recorded one for later passes.
     // `jitterNdc` shifts the sample position inside each pixel, in NDC units.
     void record(VkCommandBuffer cmd, const shader::GpuCamera& camera, glm::vec2 jitterNdc, double time,
                 vk::GpuTimer* timer);
@@ -35,7 +37,7 @@ private:
     std::uint32_t mWidth, mHeight;
     std::array<vk::GpuImage, shader::kGBufferAttachmentCount> mAttachments;
     vk::GpuImage mDepth;
-    vk::Buffer mCamera;
+    RecordedUniform<shader::GpuCamera> mCamera;
     vk::DescriptorSetLayout mFrameLayout;
     vk::DescriptorSetLayout mMaterialLayout;
     vk::DescriptorPool mPool;
