@@ -1,4 +1,6 @@
-// A VkBuffer with its own memory. Host-visible buffers stay mapped for their whole life.
+// A VkBuffer with its own memory. Host-visible buffers stay mapped for their whole life. A size
+// beyond the device's largest buffer or allocation, or its heap, is a clear error before any
+// allocation is tried.
 #pragma once
 
 #include "vk/Context.h"
@@ -13,6 +15,14 @@ enum class MemoryUse {
     Upload,   // host-visible, written by the CPU
     Readback, // host-visible (cached where possible), read by the CPU
 };
+
+// The memory type `bytes` for `use` get among `typeBits` (VkMemoryRequirements::memoryTypeBits),
+// chosen from `memory` alone so the rule can be tested on any device's layout: the types with the
+// flags `use` needs, in the largest heap that has them (Device: DEVICE_LOCAL, never preferring
+// HOST_VISIBLE, so VRAM wins over a discrete GPU's small BAR window). Throws a clear error when no
+// type fits or `bytes` exceed that heap.
+std::uint32_t chooseMemoryType(const VkPhysicalDeviceMemoryProperties& memory, std::uint32_t typeBits,
+                               MemoryUse use, VkDeviceSize bytes);
 
 class Buffer {
 public:

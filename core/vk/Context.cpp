@@ -6,13 +6,12 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 namespace bl::vk {
 namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
-// One submission waits at most this long: far beyond any pass, short enough to report a hang.
-constexpr std::uint64_t kFenceTimeoutNs = 600ull * 1000 * 1000 * 1000;
 
 std::string versionString(std::uint32_t v) {
     return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
@@ -281,7 +280,12 @@ Context::~Context() { release(); }
 
 void Context::release() {
     if (mDevice) {
+        // After the device is idle (or lost), abandoned submissions hold nothing any more.
         vkDeviceWaitIdle(mDevice);
+        for (const AbandonedSubmission& a : mAbandoned) {
+            vkDestroyFence(mDevice, a.fence, nullptr); // command buffers go with their pool
+        }
+        mAbandoned.clear();
         if (mCommandPool) {
             vkDestroyCommandPool(mDevice, mCommandPool, nullptr);
             mCommandPool = VK_NULL_HANDLE;
@@ -301,19 +305,29 @@ void Context::release() {
     }
 }
 
-void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
+void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record, std::uint64_t timeoutNs) const {
+    reclaimFinishedSubmissions();
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     alloc.commandPool = mCommandPool;
     alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     alloc.commandBufferCount = 1;
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     BL_VK_CHECK(vkAllocateCommandBuffers(mDevice, &alloc, &cmd));
+    // Frees the command buffer and fence on every exit except a failed wait, where the queue may
+    // still hold them.
     struct FreeOnExit {
         VkDevice d;
         VkCommandPool p;
-        VkCommandBuffer c;
-        ~FreeOnExit() { vkFreeCommandBuffers(d, p, 1, &c); }
-    } freeOnExit{mDevice, mCommandPool, cmd};
+        AbandonedSubmission s;
+        ~FreeOnExit() {
+            if (s.fence) {
+                vkDestroyFence(d, s.fence, nullptr);
+            }
+            if (s.commandBuffer) {
+                vkFreeCommandBuffers(d, p, 1, &s.commandBuffer);
+            }
+        }
+    } freeOnExit{mDevice, mCommandPool, {cmd, VK_NULL_HANDLE}};
 
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -322,30 +336,43 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
     BL_VK_CHECK(vkEndCommandBuffer(cmd));
 
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VkFence rawFence = VK_NULL_HANDLE;
-    BL_VK_CHECK(vkCreateFence(mDevice, &fenceInfo, nullptr, &rawFence));
-    Fence fence(mDevice, rawFence);
+    BL_VK_CHECK(vkCreateFence(mDevice, &fenceInfo, nullptr, &freeOnExit.s.fence));
     VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
     cmdInfo.commandBuffer = cmd;
     VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
     submit.commandBufferInfoCount = 1;
     submit.pCommandBufferInfos = &cmdInfo;
-    BL_VK_CHECK(vkQueueSubmit2(mQueue, 1, &submit, fence.get()));
-    BL_VK_CHECK(vkWaitForFences(mDevice, 1, &rawFence, VK_TRUE, kFenceTimeoutNs));
+    // A failed submit leaves the command buffer and fence untouched (the spec guarantees it), so
+    // they are freed as usual.
+    BL_VK_CHECK(vkQueueSubmit2(mQueue, 1, &submit, freeOnExit.s.fence));
+    const VkResult waited = vkWaitForFences(mDevice, 1, &freeOnExit.s.fence, VK_TRUE, timeoutNs);
+    if (waited != VK_SUCCESS) {
+        // Timeout or device loss: the queue may still execute (or hold) the command buffer and
+        // signal the fence, so neither may be freed now. Keep both until the fence signals or the
+        // context is destroyed (after vkDeviceWaitIdle).
+        {
+            std::lock_guard lock(mAbandonedMutex);
+            mAbandoned.push_back(std::exchange(freeOnExit.s, AbandonedSubmission{}));
+        }
+        const std::string what = std::string("the GPU did not finish a submission (vkWaitForFences: ") +
+                                 resultName(waited) + " after " + std::to_string(timeoutNs / 1000000) +
+                                 " ms) on '" + mInfo.name + "'";
+        log::error(what + "; its command buffer and fence are kept until the device is idle");
+        throw Error(what + ". Resources that submission used must outlive it; if the device hangs, "
+                           "restart the program");
+    }
 }
 
-std::uint32_t Context::memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
-                                  VkMemoryPropertyFlags preferred) const {
-    VkPhysicalDeviceMemoryProperties mem;
-    vkGetPhysicalDeviceMemoryProperties(mPhysical, &mem);
-    for (VkMemoryPropertyFlags want : {required | preferred, required}) {
-        for (std::uint32_t i = 0; i < mem.memoryTypeCount; ++i) {
-            if ((typeBits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & want) == want) {
-                return i;
-            }
+void Context::reclaimFinishedSubmissions() const {
+    std::lock_guard lock(mAbandonedMutex);
+    std::erase_if(mAbandoned, [&](const AbandonedSubmission& a) {
+        if (vkGetFenceStatus(mDevice, a.fence) != VK_SUCCESS) {
+            return false; // still running, or the device is lost: keep until release()
         }
-    }
-    throw Error("no Vulkan memory type with the required properties");
+        vkFreeCommandBuffers(mDevice, mCommandPool, 1, &a.commandBuffer);
+        vkDestroyFence(mDevice, a.fence, nullptr);
+        return true;
+    });
 }
 
 VkDeviceSize Context::deviceLocalHeapBytes() const {

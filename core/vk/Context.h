@@ -55,13 +55,18 @@ public:
     // Buffer owns its memory; use the smaller of the two as a buffer's size limit.
     VkDeviceSize maxBufferBytes() const { return mMaxBufferBytes; }
 
+    // One submission waits at most this long by default: far beyond any pass, short enough to
+    // report a hang instead of hanging.
+    static constexpr std::uint64_t kDefaultFenceTimeoutNs = 600ull * 1000 * 1000 * 1000;
+
     // Records commands, submits them and waits for completion. Everything a command buffer uses
     // must stay alive until this returns, which is the simple lifetime rule of this codebase.
-    void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+    // When the wait fails (timeout, device lost) it throws bl::Error and keeps the command buffer
+    // and fence (the queue may still use them) until they are done or the context is destroyed.
+    void submitAndWait(const std::function<void(VkCommandBuffer)>& record,
+                       std::uint64_t timeoutNs = kDefaultFenceTimeoutNs) const;
 
-    // A memory type with all of `required` (and `preferred` if possible) among `typeBits`.
-    std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
-                             VkMemoryPropertyFlags preferred = 0) const;
+    // Memory types are chosen by vk::chooseMemoryType (vk/Buffer.h), one rule for buffers and images.
 
     // Size of the largest device-local memory heap.
     VkDeviceSize deviceLocalHeapBytes() const;
@@ -78,6 +83,8 @@ public:
 
 private:
     void release(); // destroys what exists, in reverse order of creation
+    // Frees the command buffers and fences of submissions whose wait failed, once they finished.
+    void reclaimFinishedSubmissions() const;
 
     static VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                      VkDebugUtilsMessageTypeFlagsEXT types,
@@ -97,6 +104,14 @@ private:
     bool mGeometryShader = false;
     VkDeviceSize mMaxAllocationBytes = 0;
     VkDeviceSize mMaxBufferBytes = 0;
+
+    // Submissions whose wait failed: freed by reclaimFinishedSubmissions() or release().
+    struct AbandonedSubmission {
+        VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
+        VkFence fence = VK_NULL_HANDLE;
+    };
+    mutable std::mutex mAbandonedMutex;
+    mutable std::vector<AbandonedSubmission> mAbandoned;
 
     mutable std::mutex mMessageMutex;
     std::vector<std::string> mErrors;

@@ -57,7 +57,9 @@ GpuImage::GpuImage(const Context& ctx, const GpuImageDesc& desc) : mDesc(desc) {
     vkGetImageMemoryRequirements(device, raw, &req);
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = ctx.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    VkPhysicalDeviceMemoryProperties mem;
+    vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice(), &mem);
+    alloc.memoryTypeIndex = chooseMemoryType(mem, req.memoryTypeBits, MemoryUse::Device, req.size);
     VkDeviceMemory memory = VK_NULL_HANDLE;
     BL_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &memory));
     mMemory = Memory(device, memory);
@@ -126,6 +128,8 @@ std::vector<std::byte> GpuImage::download(const Context& ctx, VkImageLayout layo
         back.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
         back.newLayout = layout;
         transitionImage(cmd, get(), back);
+        // The fence alone does not make device writes visible to host reads.
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_PIPELINE_STAGE_2_HOST_BIT);
     });
     std::vector<std::byte> out(bytes);
     std::memcpy(out.data(), staging.data(), bytes);

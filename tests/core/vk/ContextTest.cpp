@@ -33,6 +33,43 @@ TEST_F(VkCore, AllocationAndBufferLimitsComeFromTheDevice) {
     EXPECT_GE(ctx().maxBufferBytes(), kSpecMinimumBytes);
 }
 
+// A wait that gives up (here: a zero timeout on a submission that is certainly still running) must
+// throw without freeing the command buffer or fence the queue still holds; the validation layers
+// (checked by the fixture) report any such free as an error.
+TEST_F(VkCore, SubmissionThatTimesOutKeepsWhatTheQueueStillUses) {
+    // Enough fill work that the submission is still running when the zero-timeout wait looks.
+    constexpr VkDeviceSize kFillBytes = VkDeviceSize(64) << 20;
+    constexpr int kFills = 32;
+    vk::Buffer target(ctx(), kFillBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Device);
+    const std::string e = errorOf([&] {
+        ctx().submitAndWait(
+            [&](VkCommandBuffer cmd) {
+                for (int i = 0; i < kFills; ++i) {
+                    vkCmdFillBuffer(cmd, target.get(), 0, VK_WHOLE_SIZE, std::uint32_t(i));
+                }
+            },
+            0);
+    });
+    if (e.empty()) {
+        GTEST_SKIP() << "the device finished the fills before a zero-timeout wait looked";
+    }
+    EXPECT_NE(e.find("VK_TIMEOUT"), std::string::npos) << e;
+    // The buffer outlives the submission: the test owns it, so it waits before destroying it.
+    BL_VK_CHECK(vkDeviceWaitIdle(ctx().device()));
+    // The context stays usable, and reclaims the abandoned submission once it has finished.
+    std::uint32_t first = 0;
+    ctx().submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, target.get(), 0, 4, 7u); });
+    target.download(ctx(), &first, sizeof(first));
+    EXPECT_EQ(first, 7u);
+}
+
+TEST_F(VkCore, BufferBeyondTheDeviceLimitIsAClearError) {
+    const VkDeviceSize tooLarge = std::min(ctx().maxBufferBytes(), ctx().maxAllocationBytes()) + 1;
+    std::string e = errorOf(
+        [&] { vk::Buffer(ctx(), tooLarge, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Device); });
+    EXPECT_NE(e.find("exceeds the largest buffer of '" + ctx().info().name + "'"), std::string::npos) << e;
+}
+
 TEST_F(VkCore, BufferRoundTrip) {
     std::vector<float> data(1000);
     std::iota(data.begin(), data.end(), 0.5f);
