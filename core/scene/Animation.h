@@ -1,6 +1,8 @@
 // Keyframed rigid transforms (time in seconds): linear translation, spherical rotation.
 #pragma once
 
+#include "base/Bounds.h"
+
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <vector>
@@ -21,6 +23,9 @@ public:
     const std::vector<RigidKeyframe>& keys() const { return mKeys; }
     // Transform at time t; clamps outside the keyed range; identity when not animated.
     glm::mat4 at(double t) const;
+    // A box containing `local` (a box in the animated object's own space) at every time, including
+    // the arcs rotations sweep between keys; `local` itself when not animated.
+    Bounds sweptBounds(const Bounds& local) const;
 
 private:
     std::vector<RigidKeyframe> mKeys;

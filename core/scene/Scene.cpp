@@ -19,18 +19,7 @@ Bounds Scene::bounds() const {
         for (const glm::vec3& p : m.positions) {
             local.extend(p);
         }
-        if (!m.animation.animated()) {
-            b.extend(local);
-            continue;
-        }
-        for (const RigidKeyframe& k : m.animation.keys()) {
-            glm::mat4 t = m.animation.at(k.time);
-            for (int c = 0; c < 8; ++c) {
-                glm::vec3 corner((c & 1) ? local.hi.x : local.lo.x, (c & 2) ? local.hi.y : local.lo.y,
-                                 (c & 4) ? local.hi.z : local.lo.z);
-                b.extend(glm::vec3(t * glm::vec4(corner, 1.0f)));
-            }
-        }
+        b.extend(m.animation.sweptBounds(local));
     }
     return b;
 }

@@ -33,7 +33,7 @@ struct Scene {
     LoadStats loadStats;
 
     std::size_t triangleCount() const;
-    // Bounds of all geometry over all keyframes (at each key's transform).
+    // Bounds of all geometry over its whole motion (rotations' arcs between keys included).
     Bounds bounds() const;
     SceneFeatures features() const;
 };
