@@ -1,5 +1,6 @@
 #include "atlas/Atlas.h"
 
+#include "atlas/AlbedoLookup.h"
 #include "atlas/Packing.h"
 #include "base/Error.h"
 #include "base/Log.h"
@@ -116,7 +117,7 @@ constexpr int kCoverageRounds = 2;
 constexpr int kDensitySearchPackings = 6;
 constexpr double kFullEnough = 0.995;
 
-// The most texels an atlas may have over all its pages (49 bytes of maps each: 12 GiB).
+// The most texels an atlas may have over all its pages (65 bytes of maps each: 16 GiB).
 constexpr std::size_t kMaxAtlasTexels = std::size_t(1) << 28;
 
 // Scales and places the oriented charts: the densest packing into one options.size^2 page, or
@@ -335,10 +336,14 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
     maps.normal.assign(texels, glm::vec3(0.0f));
     maps.material.assign(texels, 0);
     maps.emission.assign(texels, glm::vec3(0.0f));
+    maps.albedo.assign(texels, glm::vec3(0.0f));
+    maps.triangle.assign(texels, 0);
     maps.area.assign(texels, 0.0f);
     maps.valid.assign(texels, 0);
     maps.chart.assign(texels, -1);
     std::size_t covered = 0;
+    const AlbedoLookup albedo(scene);
+    const std::vector<std::uint32_t> firstTriangle = firstSceneTriangles(scene);
     for (std::size_t t = 0; t < texels; ++t) {
         const TexelOwner& o = owner[t];
         st.overlappingTexels += o.otherChart >= 0;
@@ -352,6 +357,11 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
         maps.normal[t] = glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 0, 1);
         maps.material[t] = mesh.material;
         maps.emission[t] = mesh.emission;
+        const glm::vec2 materialUv = mesh.uvs.empty() ? glm::vec2(0.0f)
+                                                      : o.bary.x * mesh.uvs[tri.x] + o.bary.y * mesh.uvs[tri.y] +
+                                                            o.bary.z * mesh.uvs[tri.z];
+        maps.albedo[t] = albedo.at(mesh.material, materialUv);
+        maps.triangle[t] = firstTriangle[chart.mesh] + f;
         const float a3 = 0.5f * glm::length(glm::cross(mesh.positions[tri.y] - mesh.positions[tri.x],
                                                        mesh.positions[tri.z] - mesh.positions[tri.x]));
         maps.area[t] = a3 / float(owned[{o.chart, o.face}]);
@@ -375,6 +385,8 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
                     maps.normal[t] = maps.normal[s];
                     maps.material[t] = maps.material[s];
                     maps.emission[t] = maps.emission[s];
+                    maps.albedo[t] = maps.albedo[s];
+                    maps.triangle[t] = maps.triangle[s];
                     maps.chart[t] = maps.chart[s];
                     maps.valid[t] = 2;
                 }
@@ -385,6 +397,9 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
     // 5. Per-vertex atlas uvs (vertices split where charts meet) and the statistics.
     atlas.meshes.resize(scene.meshes.size());
     atlas.vertexPages.resize(scene.meshes.size());
+    atlas.vertexSources.resize(scene.meshes.size());
+    atlas.triangleSources.resize(scene.meshes.size());
+    atlas.triangleCharts.resize(scene.meshes.size());
     std::vector<std::map<std::pair<std::uint32_t, std::size_t>, std::uint32_t>> vertexOf(scene.meshes.size());
     double stretchWeighted = 0.0, areaTotal = 0.0;
     for (std::size_t c = 0; c < atlas.charts.size(); ++c) {
@@ -404,10 +419,13 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
                     out.normals.push_back(mesh.normals[tri[k]]);
                     out.uvs.push_back(chart.uv[3 * i + k] / glm::vec2(float(width), float(height)));
                     atlas.vertexPages[chart.mesh].push_back(chart.page);
+                    atlas.vertexSources[chart.mesh].push_back(tri[k]);
                 }
                 split[k] = it->second;
             }
             out.triangles.push_back(split);
+            atlas.triangleSources[chart.mesh].push_back(chart.faces[i]);
+            atlas.triangleCharts[chart.mesh].push_back(std::uint32_t(c));
         }
         stretchWeighted += chart.stretch * chartArea;
         areaTotal += chartArea;
@@ -427,6 +445,18 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
     st.utilization = double(covered) / double(texels);
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return atlas;
+}
+
+std::vector<std::uint32_t> firstSceneTriangles(const Scene& scene) {
+    std::vector<std::uint32_t> first{0};
+    for (const Mesh& m : scene.meshes) {
+        const std::size_t next = std::size_t(first.back()) + m.triangles.size();
+        if (next > std::numeric_limits<std::uint32_t>::max()) {
+            throw Error("scene: " + std::to_string(next) + " triangles and more, over the 2^32 a triangle index holds");
+        }
+        first.push_back(std::uint32_t(next));
+    }
+    return first;
 }
 
 Image chartImage(const TexelMaps& maps) {

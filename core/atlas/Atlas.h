@@ -52,6 +52,8 @@ struct TexelMaps {
     std::vector<glm::vec3> normal;
     std::vector<std::uint32_t> material;
     std::vector<glm::vec3> emission;
+    std::vector<glm::vec3> albedo;    // linear albedo at the sample point (AlbedoLookup: texture or flat)
+    std::vector<std::uint32_t> triangle; // scene triangle of the sample point (firstSceneTriangles), 0 if empty
     std::vector<float> area;          // world area the texel stands for
     std::vector<std::uint8_t> valid;  // 0 empty, 1 covered, 2 dilated from a neighbour
     std::vector<std::int32_t> chart;  // owning chart, -1 empty
@@ -62,11 +64,19 @@ struct Atlas {
     std::vector<FlatChart> charts;     // uv in texel units of the atlas after packing
     std::vector<Mesh> meshes;          // the scene's meshes with atlas uvs in [0,1]^2, vertices split on seams
     std::vector<std::vector<std::uint32_t>> vertexPages; // per mesh, the page of each vertex's uv
+    std::vector<std::vector<std::uint32_t>> vertexSources;   // per mesh, the scene vertex each vertex splits
+    std::vector<std::vector<std::uint32_t>> triangleSources; // per mesh, the scene triangle (in that mesh) of each triangle
+    std::vector<std::vector<std::uint32_t>> triangleCharts;  // per mesh, the chart of each triangle
     TexelMaps maps;
     AtlasStats stats;
 };
 
 Atlas buildAtlas(const Scene& scene, const AtlasOptions& options);
+
+// Scene triangle indices number the triangles of the whole scene: meshes in scene order, each
+// mesh's triangles in order (GpuScene's numbering: its plane buffer, and first triangle +
+// gl_PrimitiveID in a draw). Per mesh, the index of its first triangle, then the total.
+std::vector<std::uint32_t> firstSceneTriangles(const Scene& scene);
 
 // The charts in colour (dilated texels darker, empty black), for `bundlelab atlas --out`.
 Image chartImage(const TexelMaps& maps);

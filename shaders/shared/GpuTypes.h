@@ -13,6 +13,19 @@ struct GpuVertex {
 };
 BL_STATIC_ASSERT(sizeof(GpuVertex) == 32, "GpuVertex layout");
 
+// The optional second vertex stream (GpuScene built with an atlas): where the vertex lies in the
+// texture atlas. Atlas charts split vertices at their seams, so such a GpuScene draws the atlas's
+// vertices (GpuVertex at binding 0, this at binding 1) with the same triangle order.
+struct GpuAtlasVertex {
+    vec2 uv;   // atlas uv in [0, 1]^2 of its page, (0, 0) = texel (0, 0) of the page
+    uint page; // atlas page
+    uint pad0;
+};
+BL_STATIC_ASSERT(sizeof(GpuAtlasVertex) == 16, "GpuAtlasVertex layout");
+BL_CONST uint kAtlasVertexBinding = 1u;       // vertex input binding of GpuAtlasVertex
+BL_CONST uint kAtlasVertexLocationUv = 2u;    // vertex shader input: vec2 atlas uv
+BL_CONST uint kAtlasVertexLocationPage = 3u;  // vertex shader input: uint page
+
 BL_CONST uint kNoTexture = 0xffffffffu;
 
 // BRDF parameters; the BRDF itself is in Brdf.h. exponentU == exponentV means the isotropic

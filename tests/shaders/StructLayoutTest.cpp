@@ -8,6 +8,8 @@ using namespace bl::shader;
 
 TEST(StructLayout, MatchesStd430) {
     EXPECT_EQ(offsetof(GpuVertex, normalV), 16u);
+    EXPECT_EQ(offsetof(GpuAtlasVertex, page), 8u);
+    EXPECT_EQ(sizeof(GpuAtlasVertex), 16u);
     EXPECT_EQ(offsetof(GpuMaterial, albedoTexture), 12u);
     EXPECT_EQ(offsetof(GpuMaterial, specular), 16u);
     EXPECT_EQ(offsetof(GpuMaterial, exponentU), 28u);
