@@ -1,5 +1,6 @@
-// Perfect global ray-bundles: every fragment of every triangle along a direction, appended to
-// per-pixel linked lists (a head buffer and a node pool filled by an atomic counter).
+// Perfect global ray-bundles one at a time, with no overflow handling left to the caller: a
+// grow-and-tile wrapper around a one-slot BundlePool (BundlePool.h), for modes like skylight that
+// consume each bundle before building the next.
 //
 // Never loses a fragment: the build counts the nodes it needs; when they exceed the pool, the pool
 // grows and the bundle is rebuilt; when they exceed the memory cap, the frame is split into tiles
@@ -7,18 +8,12 @@
 // overflow is reported in the stats.
 #pragma once
 
-#include "gpu/GpuScene.h"
-#include "vk/Buffer.h"
-#include "vk/Descriptors.h"
-#include "vk/GpuTimer.h"
-#include "vk/Pipeline.h"
+#include "bundle/BundlePool.h"
 
 #include <functional>
-#include <shared/BundleTypes.h>
+#include <memory>
 
 namespace bl {
-
-enum class BundlePayload { None, Shading, Surface };
 
 struct BundleBuilderOptions {
     BundlePayload payload = BundlePayload::None;
@@ -35,7 +30,7 @@ struct BuiltBundle {
     VkDeviceAddress heads = 0;
     VkDeviceAddress nodes = 0;
     VkDeviceAddress payload = 0;
-    std::uint32_t fragments = 0;
+    std::uint64_t fragments = 0;
 };
 
 struct BundleStats {
@@ -44,7 +39,7 @@ struct BundleStats {
     std::uint32_t longestList = 0;    // with listStatistics
     std::uint32_t rebuilds = 0;       // builds repeated after the pool grew
     std::uint32_t tiles = 1;          // parts the frame was split into
-    double buildMs = 0.0;             // GPU time of the final builds
+    double buildMs = 0.0;             // GPU time of every build, rebuilds after an overflow included
     double traverseMs = 0.0;          // GPU time of the statistics pass: every list walked once
     double meanListLength() const { return nonEmptyPixels ? double(fragments) / nonEmptyPixels : 0.0; }
 };
@@ -67,42 +62,26 @@ public:
     void readLists(const BuiltBundle& bundle, std::vector<std::uint32_t>& heads,
                    std::vector<shader::BundleNode>& nodes) const;
 
-    std::uint64_t capacity() const { return mCapacity; }
-    bool usesSubgroups() const { return mSubgroups; }
-    bool exactDepths() const { return mExactDepth; }
-    static std::uint32_t payloadBytes(BundlePayload payload);
+    std::uint64_t capacity() const { return mPool ? mPool->capacity() : 0; }
+    bool usesSubgroups() const;
+    bool exactDepths() const { return mContext->geometryShader(); }
 
 private:
     struct Attempt {
-        std::uint32_t requested;
+        std::uint64_t requested;
         double ms;
     };
-    Attempt buildOnce(const shader::BundleFrame& frame, double time, VkPipeline pipeline);
-    void ensureCapacity(std::uint64_t nodes, std::uint32_t pixels);
-    void readStatistics(const shader::BundleFrame& frame, BundleStats& stats);
+    Attempt buildOnce(const shader::BundleFrame& frame, double time, bool countOnly);
+    void ensurePool(std::uint32_t pixels);
+    void readStatistics(BundleStats& stats);
     void buildTiles(const shader::BundleFrame& frame, double time, std::uint32_t depth, BundleStats& stats,
                     const std::function<void(const BuiltBundle&)>& consume);
 
     const vk::Context* mContext;
     const gpu::GpuScene* mScene;
     BundleBuilderOptions mOptions;
-    bool mSubgroups = false;
-    bool mExactDepth = false;
-    std::uint64_t mCapacity = 0;
-    std::uint64_t mCapNodes = 0;
-    vk::Buffer mHeads;
-    vk::Buffer mNodes;
-    vk::Buffer mPayload;
-    vk::Buffer mCounters;
-    vk::Buffer mFrame;
+    std::unique_ptr<BundlePool> mPool;
     vk::Buffer mStats;
-    vk::DescriptorSetLayout mSetLayout;
-    vk::DescriptorPool mPool;
-    VkDescriptorSet mSet = VK_NULL_HANDLE;
-    vk::PipelineLayout mPipelineLayout;
-    vk::Pipeline mBuildPipeline;
-    vk::Pipeline mCountPipeline;
-    vk::Pipeline mStatsPipeline;
     vk::GpuTimer mTimer;
 };
 

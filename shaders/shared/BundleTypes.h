@@ -40,37 +40,121 @@ struct BundleNode {
 };
 BL_STATIC_ASSERT(sizeof(BundleNode) == 8, "BundleNode layout");
 
-// Payload "shading" ([TO12s]'s compact node without depth/next): 12 bytes.
-struct BundleShading {
-    uint normal;      // octahedral, 2 x 16-bit snorm, facing the side the face bit says
-    uint albedo;      // rgba8 unorm: albedo rgb, a = specular luminance
-    uint material;    // material index
+// Payload "hit": what a consumer needs to shade a fragment without going back to the scene.
+// Written by the exact build variants (they know the triangle), 24 bytes per node beside the core.
+struct BundleHit {
+    uint normal;      // octahedral (2 x 16-bit snorm) shading normal in world space, as interpolated
+                      // (not turned to any side: compare with the face bit or the query direction)
+    uint material;    // material index in the low 24 bits, kBundleHit* flags in the high 8
+    vec2 uv;          // material texture coordinates at the pixel's ray (float: tiled UVs stay exact)
+    uint id;          // global triangle index (GpuScene order), or the point index of a splat
+    uint barycentric; // 2 x 16-bit unorm (b1, b2) of the ray's hit in the triangle; 0 for splats
 };
-BL_STATIC_ASSERT(sizeof(BundleShading) == 12, "BundleShading layout");
+BL_STATIC_ASSERT(sizeof(BundleHit) == 24, "BundleHit layout");
 
-// Payload "surface": which triangle, and where on it (for multibounce / atlas lookups).
-struct BundleSurface {
-    uint triangle;    // global triangle index (GpuScene order)
-    uint barycentric; // 2 x 16-bit unorm (b1, b2)
-};
-BL_STATIC_ASSERT(sizeof(BundleSurface) == 8, "BundleSurface layout");
+BL_CONST uint kBundleHitMaterialMask = 0x00ffffffu;
+BL_CONST uint kBundleHitSplat = 0x01000000u; // the fragment is a point splat: `id` is a point index
 
 BL_CONST uint kBundlePayloadNone = 0u;
-BL_CONST uint kBundlePayloadShading = 1u;
-BL_CONST uint kBundlePayloadSurface = 2u;
+BL_CONST uint kBundlePayloadHit = 1u;
 
-// Written by the build pass: nodes asked for (may exceed capacity: then the build overflowed and
-// nothing past capacity was stored).
+// Geometry kinds a bundle is built from.
+BL_CONST uint kBundleGeometryTriangles = 0u;
+BL_CONST uint kBundleGeometrySplats = 1u;
+
+// A point splat for imperfect bundles ([TO12p]): a disc of `radius` about `position` in the plane
+// of `normal`, rasterized as the tangent-space triangle circumscribing it and cut to the circle
+// (fragments outside are discarded before a node is allocated).
+struct BundleSplat {
+    vec3 position;
+    float radius;   // world units, > 0
+    vec3 normal;    // unit
+    uint material;
+};
+BL_STATIC_ASSERT(sizeof(BundleSplat) == 32, "BundleSplat layout");
+// |n.n - 1| beyond which a splat's normal is refused (the splat is not drawn): far above the
+// rounding of a normalized float vector, far below a forgotten normalization.
+BL_CONST float kBundleSplatNormalTolerance = 1e-3f;
+
+// The node allocator of a pool, shared by every bundle built into it. A fragment that finds the
+// pool full adds itself to `excess` (a 64-bit count in two words, low word carrying into the high
+// one) instead of `allocated`, so the total asked for, allocated + excess, is exact however far it
+// passes 2^32, while `allocated` stays below capacity + the fragments in flight. Consumers test
+// blBundlePoolOverflowed() and skip their work: the mode grows the pool and redoes the iteration.
 struct BundleCounters {
-    uint requested;
-    uint capacity;
-    uint pad0;
-    uint pad1;
+    uint allocated;  // nodes handed out (indices >= capacity were not stored)
+    uint capacity;   // nodes the pool holds
+    uint excessLow;  // fragments that found the pool full, low 32 bits
+    uint excessHigh; // high 32 bits
 };
 BL_STATIC_ASSERT(sizeof(BundleCounters) == 16, "BundleCounters layout");
 
-// Push constants of the build pass: the frame, the model matrix, buffer addresses (uvec2: no
-// 64-bit integers needed), and a tile to restrict the build to.
+// Push constants of one draw of a pool build: where the bundle goes (its frame, its slot's heads)
+// and what is drawn (a mesh's triangles with its model matrix, or a range of splats). 128 bytes,
+// the push-constant size every device guarantees.
+struct BundleDrawPush {
+    mat4 model;           // triangles: the mesh's rigid transform at the bundle's time
+    uvec2 frameAddress;   // this slot's BundleFrame
+    uvec2 headAddress;    // this slot's heads
+    uvec2 nodeAddress;
+    uvec2 payloadAddress; // 0 without payload
+    uvec2 counterAddress;
+    uvec2 splatAddress;   // splats: the BundleSplat array
+    uint payloadKind;
+    uint material;        // triangles: the mesh's material
+    uint firstPrimitive;  // global index of the draw's first triangle, or its first splat
+    uint vertexOffset;    // triangles: the draw's vertex offset (exact variants fetch the triangle)
+};
+BL_STATIC_ASSERT(sizeof(BundleDrawPush) == 128, "BundleDrawPush layout");
+
+// Everything a consumer shader needs to read the bundles of a pool: buffer addresses, and the
+// layout of the head slices (slot s's heads start at s * slotPixels).
+struct BundlePoolView {
+    uvec2 heads;
+    uvec2 nodes;
+    uvec2 payload;   // 0 without payload
+    uvec2 frames;    // BundleFrame per slot
+    uvec2 counters;
+    uvec2 previous;  // after sorting: per node, the node before it in its list (kBundleNil first)
+    uint slotPixels; // head entries per slot
+    uint slots;
+    uint payloadKind;
+    uint sorted;     // 1 when the lists were ordered by the sort pass since their build
+};
+BL_STATIC_ASSERT(sizeof(BundlePoolView) == 64, "BundlePoolView layout");
+
+// Push constants of the pool's compute passes (sort, statistics).
+struct BundlePoolPush {
+    BundlePoolView pool;
+    uint slot;
+    uint pad0;
+    uvec2 statsAddress; // statistics pass: BundleListStats
+};
+BL_STATIC_ASSERT(sizeof(BundlePoolPush) == 80, "BundlePoolPush layout");
+
+// What the statistics pass finds by walking every list of a slot once.
+struct BundleListStats {
+    uint nonEmptyPixels;
+    uint longestList;
+    uint reachableNodes; // nodes reached from the heads: equals the stored nodes when nothing is lost
+    uint pad0;
+};
+BL_STATIC_ASSERT(sizeof(BundleListStats) == 16, "BundleListStats layout");
+
+// How far along the ray a point's own surface can appear in its bundle pixel: the pixel centre's
+// ray meets the point's plane up to one pixel away, i.e. up to pixelSize * tan(incidence) deeper or
+// shallower. 1 px * tan covers it with margin; capped, since beyond ~85 degrees the cosine weight of
+// any estimator makes the term negligible anyway.
+BL_CONST float kBundleOwnSurfacePixels = 1.0f;
+BL_CONST float kBundleMaxOwnSurfaceTangent = 12.0f;
+
+// Nodes a pixel's list can hold in the sort pass's local array; longer lists are sorted in place
+// (insertion into the linked list: slower, equally exact).
+BL_CONST uint kBundleSortLocalNodes = 64u;
+BL_CONST uint kBundleSortGroupSize = 64u;
+
+// Legacy: push constants of the depth-map pass (directional shadow map), which shares the bundle
+// vertex shader with its uniform frame.
 struct BundleBuildPush {
     mat4 model;
     uvec2 headAddress;

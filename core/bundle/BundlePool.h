@@ -1,0 +1,147 @@
+// A pool of K resident global ray-bundles (EQUATIONS.md section 1), recorded by the mode into its
+// own command buffers: one node pool, one allocator and K head slices, so a mode can build many
+// bundles in one submission and keep all of them for later passes (multibounce reuses K
+// omnidirectional bundles per frame; bidir builds one per VPL pair; atlas one per direction).
+//
+// Usage, per command buffer:
+//   pool.recordReset(cmd);                       // the allocator starts empty
+//   pool.recordBuild(cmd, slot, frame, geometry); // for any slots, triangles or point splats
+//   pool.recordSort(cmd, slot);                  // optional: depth order + O(1) neighbours
+//   ... consumer passes read pool.view() and skip their work if blBundlePoolOverflowed() ...
+// then, after the fence: status() says whether the builds fit; if not, grow() and redo the
+// iteration (nothing partial may be kept). BundleBuilder wraps this into grow-and-tile for modes
+// that want one bundle at a time with no overflow handling of their own.
+//
+// Memory: every limit comes from the device (largest device-local heap, maxMemoryAllocationSize,
+// maxBufferSize) or from an explicit cap; the sum of heads, nodes, payload and links is checked
+// before anything is allocated.
+#pragma once
+
+#include "gpu/GpuScene.h"
+#include "vk/Buffer.h"
+#include "vk/Descriptors.h"
+#include "vk/GpuTimer.h"
+#include "vk/Pipeline.h"
+
+#include <shared/BundleTypes.h>
+#include <vector>
+
+namespace bl {
+
+enum class BundlePayload {
+    None, // depth + face only (visibility)
+    Hit,  // + normal, material, texture UV, triangle or point id, barycentrics (BundleHit)
+};
+
+// What a bundle is built from: the scene's triangles at a time, or point splats in a device buffer
+// (imperfect bundles).
+struct BundleGeometry {
+    std::uint32_t kind = shader::kBundleGeometryTriangles;
+    double time = 0.0;                // triangles: scene time
+    VkDeviceAddress splats = 0;       // splats: BundleSplat array
+    std::uint32_t splatCount = 0;
+
+    static BundleGeometry triangles(double time) { return {shader::kBundleGeometryTriangles, time, 0, 0}; }
+    static BundleGeometry pointSplats(VkDeviceAddress splats, std::uint32_t count) {
+        return {shader::kBundleGeometrySplats, 0.0, splats, count};
+    }
+};
+
+struct BundlePoolOptions {
+    std::uint32_t slots = 1;          // bundles resident at once
+    std::uint32_t slotPixels = 0;     // head entries per slot: the largest frame's width * height
+    std::uint64_t initialNodes = 0;   // 0: 4 per slot pixel per slot
+    BundlePayload payload = BundlePayload::None;
+    bool sortable = false;            // keep a predecessor per node for O(1) backward steps
+    std::uint64_t memoryCapBytes = 0; // cap on node storage (nodes + payload + links); 0: half the
+                                      // largest device-local heap, less the heads
+    bool subgroupAllocation = true;   // one atomic per subgroup where the device allows it
+};
+
+// The allocator's state after the builds of one command buffer completed.
+struct BundlePoolStatus {
+    std::uint64_t requested = 0; // nodes every build since recordReset asked for (exact, 64-bit)
+    std::uint64_t capacity = 0;
+    bool overflowed() const { return requested > capacity; }
+};
+
+class BundlePool {
+public:
+    // `scene` provides the triangles (and the planes for exact depths); it must outlive the pool.
+    BundlePool(const vk::Context& ctx, const gpu::GpuScene& scene, const BundlePoolOptions& options);
+
+    void recordReset(VkCommandBuffer cmd) const;
+    void recordBuild(VkCommandBuffer cmd, std::uint32_t slot, const shader::BundleFrame& frame,
+                     const BundleGeometry& geometry, vk::GpuTimer* timer = nullptr) const;
+    // The benchmark floor: the same rasterization of the scene's triangles, counting fragments
+    // (into the allocator: status().requested) and storing nothing.
+    void recordCount(VkCommandBuffer cmd, const shader::BundleFrame& frame, double time,
+                     vk::GpuTimer* timer = nullptr) const;
+    void recordSort(VkCommandBuffer cmd, std::uint32_t slot, vk::GpuTimer* timer = nullptr) const;
+    // Walks every list of the slot once, adding into the BundleListStats at `stats` (the buffer
+    // must be zeroed before).
+    void recordStatistics(VkCommandBuffer cmd, std::uint32_t slot, VkDeviceAddress stats,
+                          vk::GpuTimer* timer = nullptr) const;
+
+    // After the fence of the command buffer with the builds.
+    BundlePoolStatus status() const;
+    // Grows the node pool to what `status` asked for plus headroom, within the limits. False when
+    // the limits do not allow it (the caller must split its work, e.g. into tiles). Contents are lost.
+    bool grow(const BundlePoolStatus& status);
+
+    shader::BundlePoolView view() const;
+    std::uint32_t slots() const { return mOptions.slots; }
+    std::uint32_t slotPixels() const { return mOptions.slotPixels; }
+    std::uint64_t capacity() const { return mCapacity; }
+    std::uint64_t maxNodes() const { return mMaxNodes; }
+    BundlePayload payload() const { return mOptions.payload; }
+    bool exactDepths() const { return mExactDepth; }
+    bool usesSubgroups() const { return mSubgroups; }
+    std::uint64_t bytesPerNode() const;
+
+    // Host copies (tests, debugging): a slot's heads and frame, the node pool, the payload, links.
+    std::vector<std::uint32_t> readHeads(std::uint32_t slot) const;
+    shader::BundleFrame readFrame(std::uint32_t slot) const;
+    std::vector<shader::BundleNode> readNodes(std::uint64_t count) const;
+    std::vector<shader::BundleHit> readHits(std::uint64_t count) const;
+    std::vector<std::uint32_t> readPrevious(std::uint64_t count) const;
+
+private:
+    void allocateNodes(std::uint64_t nodes);
+    void checkSlot(std::uint32_t slot, const shader::BundleFrame& frame) const;
+    void recordTriangles(VkCommandBuffer cmd, std::uint32_t slot, const shader::BundleFrame& frame, double time,
+                         VkPipeline pipeline, const char* passName, vk::GpuTimer* timer,
+                         const BundleGeometry* splats = nullptr) const;
+
+    const vk::Context* mContext;
+    const gpu::GpuScene* mScene;
+    BundlePoolOptions mOptions;
+    bool mSubgroups = false;
+    bool mExactDepth = false;
+    std::uint64_t mMaxNodes = 0;
+    std::uint64_t mFixedBytes = 0; // heads + frames
+    std::uint64_t mCapacity = 0;
+    vk::Buffer mHeads;
+    vk::Buffer mFrames;
+    vk::Buffer mCounters;
+    vk::Buffer mNodes;
+    vk::Buffer mPayload;
+    vk::Buffer mPrevious;
+    vk::DescriptorSetLayout mSetLayout;
+    vk::DescriptorPool mDescriptorPool;
+    VkDescriptorSet mSet = VK_NULL_HANDLE;
+    vk::PipelineLayout mDrawLayout;
+    vk::PipelineLayout mComputeLayout;
+    vk::Pipeline mTrianglePipeline;
+    vk::Pipeline mSplatPipeline;
+    vk::Pipeline mCountPipeline;
+    vk::Pipeline mSortPipeline;
+    vk::Pipeline mStatsPipeline;
+};
+
+// Device address of a buffer created with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT.
+VkDeviceAddress deviceAddress(const vk::Context& ctx, const vk::Buffer& buffer);
+// A 64-bit address as the two words shaders take (no 64-bit integer types needed there).
+glm::uvec2 splitAddress(VkDeviceAddress address);
+
+} // namespace bl

@@ -1,0 +1,181 @@
+// Body of the pool build fragment shaders: append this fragment to its pixel's list in the
+// slot's head slice. Variants (defines before the include):
+//   BL_SPLATS               geometry is point splats (pool_splats.vert): cut to the disc, exact
+//                           depth on the splat's plane, payload id = point index
+//   BL_EXACT_DEPTH          triangles with gl_PrimitiveID (the geometryShader feature): depth and
+//                           face from the exact ray-plane hit; the hit payload needs it
+//   BL_SUBGROUP_ALLOCATION  one atomic per subgroup instead of one per fragment
+//   BL_COUNT_ONLY           the benchmark floor: allocate (count) and store nothing
+// A fragment that finds the pool full is counted, never stored (BundleTypes.h: BundleCounters).
+#include "bundle/BundleBuffers.glsl"
+#include "shared/GpuTypes.h"
+#include "shared/Octahedral.h"
+#ifdef BL_SUBGROUP_ALLOCATION
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_shuffle : require
+#endif
+
+layout(location = 0) in float inDepth;
+layout(location = 1) in vec3 inNormal;
+#ifdef BL_SPLATS
+layout(location = 2) in vec2 inDisc;
+layout(location = 3) flat in uint inSplat;
+#endif
+
+layout(push_constant) uniform PushBlock { BundleDrawPush push; };
+
+#ifdef BL_EXACT_DEPTH
+layout(set = 0, binding = 0) readonly buffer PlaneBlock { vec4 planes[]; };
+layout(set = 0, binding = 1) readonly buffer VertexBlock { GpuVertex vertices[]; };
+layout(set = 0, binding = 2) readonly buffer IndexBlock { uint indices[]; };
+#endif
+
+void addExcess(BundleCounterBlock block, uint count) {
+    uint old = atomicAdd(block.counters.excessLow, count);
+    if (old + count < old) {
+        atomicAdd(block.counters.excessHigh, 1u);
+    }
+}
+
+// A node index for each live invocation, or kBundleNil when the pool is full (then counted).
+uint allocateNode(BundleCounterBlock block, bool live) {
+#ifdef BL_SUBGROUP_ALLOCATION
+    // Helper and discarded invocations must not lead: their atomics would be lost or wrong.
+    uvec4 ballot = subgroupBallot(live);
+    uint count = subgroupBallotBitCount(ballot);
+    if (count == 0u) {
+        return kBundleNil;
+    }
+    uint leader = subgroupBallotFindLSB(ballot);
+    uint base = kBundleNil;
+    if (gl_SubgroupInvocationID == leader) {
+        if (block.counters.allocated < block.counters.capacity) {
+            base = atomicAdd(block.counters.allocated, count);
+        } else {
+            addExcess(block, count);
+        }
+    }
+    base = subgroupShuffle(base, leader);
+    if (!live || base == kBundleNil) {
+        return kBundleNil;
+    }
+    uint index = base + subgroupBallotExclusiveBitCount(ballot);
+#else
+    if (!live) {
+        return kBundleNil;
+    }
+    if (block.counters.allocated >= block.counters.capacity) {
+        addExcess(block, 1u);
+        return kBundleNil;
+    }
+    uint index = atomicAdd(block.counters.allocated, 1u);
+#endif
+    return index < block.counters.capacity ? index : kBundleNil;
+}
+
+// The pixel centre's ray (at depth 0) in world space.
+vec3 pixelRay(BundleFrame frame) {
+    return frame.origin + gl_FragCoord.x * frame.pixelSize * frame.axisX + gl_FragCoord.y * frame.pixelSize * frame.axisY;
+}
+
+// Depth along omega where the ray meets the plane (n, offset): false when the ray runs inside it
+// (or the plane is degenerate: GpuScene gives such triangles a zero normal).
+bool planeDepth(BundleFrame frame, vec3 n, float offset, out float depth, out bool frontFacesMinusOmega) {
+    float cosine = dot(n, frame.direction);
+    frontFacesMinusOmega = cosine < 0.0;
+    if (cosine == 0.0) {
+        return false;
+    }
+    depth = (offset - dot(n, pixelRay(frame))) / cosine;
+    return abs(depth) < 3.0e38;
+}
+
+// A unit vector along v, or `fallback` when v cancelled to (nearly) zero: normalize(0) is NaN.
+vec3 safeNormalize(vec3 v, vec3 fallback) {
+    float lengthSquared = dot(v, v);
+    return lengthSquared > 1e-30 ? v * inversesqrt(lengthSquared) : fallback;
+}
+
+void main() {
+    BundleFrame frame = BundleFrames(push.frameAddress).frames[0];
+    BundleCounterBlock block = BundleCounterBlock(push.counterAddress);
+    bool live = !gl_HelperInvocation;
+#ifdef BL_SPLATS
+    live = live && dot(inDisc, inDisc) <= 1.0; // cut the circumscribing triangle to the disc
+#endif
+    uint index = allocateNode(block, live);
+#ifdef BL_COUNT_ONLY
+    return;
+#else
+    if (index == kBundleNil) {
+        return;
+    }
+    uint pixel = uint(gl_FragCoord.y) * frame.width + uint(gl_FragCoord.x);
+    float depth = inDepth;
+    bool front = gl_FrontFacing;
+    vec3 planeNormal = -frame.direction;
+#if defined(BL_SPLATS)
+    BundleSplat splat = BundleSplats(push.splatAddress).splats[inSplat];
+    planeNormal = splat.normal;
+    float exact;
+    if (planeDepth(frame, splat.normal, dot(splat.normal, splat.position), exact, front)) {
+        depth = exact;
+    }
+#elif defined(BL_EXACT_DEPTH)
+    uint triangle = push.firstPrimitive + uint(gl_PrimitiveID);
+    vec4 plane = planes[triangle];
+    vec3 n = mat3(push.model) * plane.xyz;
+    float exact;
+    if (planeDepth(frame, n, plane.w + dot(n, push.model[3].xyz), exact, front)) {
+        depth = exact;
+    }
+    if (dot(n, n) > 0.0) {
+        planeNormal = n;
+    }
+#endif
+    uint face = front ? kBundleFrontFaceBit : 0u;
+    uint previous = atomicExchange(BundleHeads(push.headAddress).heads[pixel], index);
+    BundleNodes(push.nodeAddress).nodes[index] = BundleNode(depth, (previous & kBundleIndexMask) | face);
+#if defined(BL_SPLATS) || defined(BL_EXACT_DEPTH)
+    if (push.payloadKind == kBundlePayloadHit) {
+        BundleHit hit;
+#ifdef BL_SPLATS
+        hit.normal = blPackOctahedral(planeNormal);
+        hit.material = (splat.material & kBundleHitMaterialMask) | kBundleHitSplat;
+        hit.uv = vec2(0.0);
+        hit.id = inSplat;
+        hit.barycentric = 0u;
+#else
+        // Barycentrics of the ray's hit point, from the triangle's corners in world space.
+        uint first = 3u * triangle;
+        GpuVertex v0 = vertices[indices[first] + push.vertexOffset];
+        GpuVertex v1 = vertices[indices[first + 1u] + push.vertexOffset];
+        GpuVertex v2 = vertices[indices[first + 2u] + push.vertexOffset];
+        vec3 p0 = (push.model * vec4(v0.positionU.xyz, 1.0)).xyz;
+        vec3 e1 = mat3(push.model) * (v1.positionU.xyz - v0.positionU.xyz);
+        vec3 e2 = mat3(push.model) * (v2.positionU.xyz - v0.positionU.xyz);
+        vec3 q = pixelRay(frame) + depth * frame.direction - p0;
+        float d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2);
+        float d20 = dot(q, e1), d21 = dot(q, e2);
+        float denominator = d00 * d11 - d01 * d01;
+        vec2 b = denominator > 0.0 ? vec2(d11 * d20 - d01 * d21, d00 * d21 - d01 * d20) / denominator
+                                   : vec2(1.0 / 3.0);
+        // The pixel centre can lie a rounding error outside the triangle the rasterizer gave it.
+        b = clamp(b, 0.0, 1.0);
+        if (b.x + b.y > 1.0) {
+            b /= b.x + b.y;
+        }
+        float b0 = 1.0 - b.x - b.y;
+        vec3 shading = b0 * v0.normalV.xyz + b.x * v1.normalV.xyz + b.y * v2.normalV.xyz;
+        hit.normal = blPackOctahedral(safeNormalize(mat3(push.model) * shading, safeNormalize(planeNormal, -frame.direction)));
+        hit.material = push.material & kBundleHitMaterialMask;
+        hit.uv = b0 * vec2(v0.positionU.w, v0.normalV.w) + b.x * vec2(v1.positionU.w, v1.normalV.w) +
+                 b.y * vec2(v2.positionU.w, v2.normalV.w);
+        hit.id = triangle;
+        hit.barycentric = packUnorm2x16(b);
+#endif
+        BundleHitPayload(push.payloadAddress).hits[index] = hit;
+    }
+#endif
+#endif
+}
