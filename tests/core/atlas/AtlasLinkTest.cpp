@@ -158,10 +158,8 @@ std::size_t expectAlbedo(const Scene& scene, const Atlas& atlas, const AtlasLink
 
 TEST(AtlasLink, CornellBox) {
     Scene s = loadScene(bl::test::sourcePath("data/cornell-box/cornell.toml"));
-    AtlasOptions o;
-    o.size = 256;
-    Atlas a = buildAtlas(s, o);
-    AtlasLink link = linkAtlas(s, a);
+    const Atlas a = buildAtlas(s, AtlasOptions{256});
+    const AtlasLink link = linkAtlas(s, a);
     expectLinked(s, a, link);
     EXPECT_GT(link.vertices.size(), 0u);
     EXPECT_EQ(expectAlbedo(s, a, link, 0.0), 0u); // untextured: exactly the flat albedo

@@ -84,7 +84,9 @@ TEST(Charting, EveryFaceInExactlyOneChartWithinTheCone) {
                 const glm::uvec3& t = mesh.triangles[f];
                 const glm::vec3 n = glm::normalize(
                     glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
-                if (c.faces.size() > 1) EXPECT_GT(glm::dot(n, axis), std::cos(glm::radians(2.0f * options.coneDegrees)));
+                if (c.faces.size() > 1) {
+                    EXPECT_GT(glm::dot(n, axis), std::cos(glm::radians(2.0f * options.coneDegrees)));
+                }
             }
         }
         for (std::size_t f = 0; f < seen.size(); ++f) ASSERT_EQ(seen[f], 1) << "face " << f << ", seam weight " << seamWeight;
