@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
+#include <variant>
 
 namespace fs = std::filesystem;
 
@@ -179,17 +180,28 @@ void bakeTransform(Mesh& mesh, const glm::mat4& m) {
     }
 }
 
+// MTL material name -> index of the scene material that replaces it (a [[mesh]]'s `materials`).
+using MaterialRemap = std::map<std::string, std::uint32_t>;
+
 void addMeshFile(Scene& scene, MeshFile file, const std::string& context,
-                 const std::optional<std::uint32_t>& materialOverride,
+                 const std::optional<std::uint32_t>& materialOverride, const MaterialRemap& remap,
                  const std::optional<glm::vec3>& emissionOverride, const glm::mat4& transform,
                  const RigidAnimation& animation) {
-    const std::uint32_t materialBase = static_cast<std::uint32_t>(scene.materials.size());
     const int textureBase = static_cast<int>(scene.textures.size());
+    // The scene material of each file material: remapped ones are not added, so that no unused
+    // material counts in the scene's features.
+    std::vector<std::uint32_t> sceneMaterialOf(file.materials.size());
     if (!materialOverride) {
-        for (Material& m : file.materials) {
+        for (std::size_t i = 0; i < file.materials.size(); ++i) {
+            Material& m = file.materials[i];
+            if (auto it = remap.find(m.name); it != remap.end()) {
+                sceneMaterialOf[i] = it->second;
+                continue;
+            }
             if (m.albedoTexture >= 0) {
                 m.albedoTexture += textureBase;
             }
+            sceneMaterialOf[i] = static_cast<std::uint32_t>(scene.materials.size());
             scene.materials.push_back(m);
         }
         for (Texture& t : file.textures) {
@@ -210,13 +222,62 @@ void addMeshFile(Scene& scene, MeshFile file, const std::string& context,
         if (mesh.triangles.empty()) {
             continue;
         }
-        mesh.material = materialOverride ? *materialOverride : materialBase + mesh.material;
+        mesh.material = materialOverride ? *materialOverride : sceneMaterialOf.at(mesh.material);
         if (emissionOverride) {
             mesh.emission = *emissionOverride;
         }
         mesh.animation = animation;
         scene.meshes.push_back(std::move(mesh));
     }
+}
+
+// One entry of a [[mesh]]'s `materials = { mtlName = "scene material" }`, with where it was written.
+struct MaterialRemapEntry {
+    std::string mtlName;
+    std::uint32_t sceneMaterial = 0;
+    std::string where; // "file:line: mesh[i].materials.name"
+};
+
+std::vector<MaterialRemapEntry> readMaterialRemap(StrictTable& t,
+                                                  const std::map<std::string, std::uint32_t>& materialOf) {
+    std::vector<MaterialRemapEntry> out;
+    for (const StrictTable::Entry& e : t.entries("materials")) {
+        const std::string where = t.file() + ":" + std::to_string(e.line) + ": " + t.context() + ".materials." + e.key;
+        const std::string* name = e.isArray ? nullptr : std::get_if<std::string>(&e.values.front());
+        if (!name) {
+            throw Error(where + ": expected the name of a [[material]] (a string)");
+        }
+        auto it = materialOf.find(*name);
+        if (it == materialOf.end()) {
+            throw Error(where + ": no [[material]] named '" + *name + "'");
+        }
+        out.push_back({e.key, it->second, where});
+    }
+    return out;
+}
+
+// Every remapped name must be a material of the mesh file: a typo must not silently keep the MTL's.
+MaterialRemap checkMaterialRemap(const std::vector<MaterialRemapEntry>& entries, const MeshFile& file,
+                                 const std::string& meshPath) {
+    MaterialRemap remap;
+    for (const MaterialRemapEntry& e : entries) {
+        auto has = [&](const Material& m) { return m.name == e.mtlName; };
+        if (std::none_of(file.materials.begin(), file.materials.end(), has)) {
+            std::vector<std::string> names;
+            for (const Material& m : file.materials) {
+                names.push_back(m.name);
+            }
+            std::sort(names.begin(), names.end());
+            std::string list;
+            for (const std::string& n : names) {
+                list += (list.empty() ? "" : ", ") + n;
+            }
+            throw Error(e.where + ": " + fs::path(meshPath).filename().string() + " has no MTL material '" +
+                        e.mtlName + "' (it has: " + (list.empty() ? "none" : list) + ")");
+        }
+        remap[e.mtlName] = e.sceneMaterial;
+    }
+    return remap;
 }
 
 void readMesh(StrictTable& t, Scene& scene, const std::map<std::string, std::uint32_t>& materialOf) {
@@ -230,6 +291,10 @@ void readMesh(StrictTable& t, Scene& scene, const std::map<std::string, std::uin
         }
         material = it->second;
     }
+    if (material && t.has("materials")) {
+        t.fail("materials", "give either material or materials, not both");
+    }
+    const std::vector<MaterialRemapEntry> remapEntries = readMaterialRemap(t, materialOf);
     std::optional<glm::vec3> emission;
     if (t.has("emission")) {
         emission = t.vec3("emission");
@@ -254,7 +319,8 @@ void readMesh(StrictTable& t, Scene& scene, const std::map<std::string, std::uin
     } catch (const Error& e) {
         throw Error(std::string(e.what()) + "\n  (loaded from " + t.file() + ":" + std::to_string(t.line("file")) + ")");
     }
-    addMeshFile(scene, std::move(file), t.file(), material, emission, transform, animation);
+    const MaterialRemap remap = checkMaterialRemap(remapEntries, file, path);
+    addMeshFile(scene, std::move(file), t.file(), material, remap, emission, transform, animation);
 }
 
 Light readLight(StrictTable& t) {
@@ -307,6 +373,14 @@ void readEnvironment(StrictTable& t, Environment& env) {
     t.finish();
 }
 
+// Nothing to render would give a silent white (or black) image in every mode: refuse it here.
+void requireTriangles(const Scene& scene) {
+    if (scene.triangleCount() == 0) {
+        throw Error(scene.path + ": the scene has no triangles (none in its meshes, or all dropped as "
+                                 "degenerate or duplicate)");
+    }
+}
+
 Scene loadTomlScene(const std::string& path) {
     TomlDocument doc(path);
     StrictTable root = doc.root();
@@ -336,16 +410,15 @@ Scene loadTomlScene(const std::string& path) {
         scene.camera = fitCamera(scene.bounds(), {kDefaultResolution, kDefaultResolution});
     }
     root.finish();
-    if (scene.meshes.empty()) {
-        log::warn(path + ": the scene has no triangles");
-    }
+    requireTriangles(scene);
     return scene;
 }
 
 Scene loadBareMesh(const std::string& path) {
     Scene scene;
     scene.path = path;
-    addMeshFile(scene, loadMeshFile(path), path, std::nullopt, std::nullopt, glm::mat4(1.0f), {});
+    addMeshFile(scene, loadMeshFile(path), path, std::nullopt, {}, std::nullopt, glm::mat4(1.0f), {});
+    requireTriangles(scene);
     Bounds b = scene.bounds();
     scene.camera = fitCamera(b, {kDefaultResolution, kDefaultResolution});
     if (scene.features().emissiveMeshes == 0) {

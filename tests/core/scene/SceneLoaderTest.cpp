@@ -3,6 +3,8 @@
 
 #include <filesystem>
 #include <gtest/gtest.h>
+#include <map>
+#include <set>
 
 using namespace bl;
 using bl::test::errorOf;
@@ -13,10 +15,16 @@ using bl::test::writeTempFile;
 namespace {
 
 const char* kQuadObj = "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 4 3 2\n";
+// Two quads with MTL materials 'red' and 'blue', for material remapping.
+const char* kTwoObj = "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\nv 1 1 1\n"
+                      "v 0 1 1\nusemtl red\nf 1 4 3 2\nusemtl blue\nf 5 8 7 6\n";
+const char* kTwoMtl = "newmtl red\nKd 0.8 0.1 0.1\nnewmtl blue\nKd 0.1 0.1 0.8\n";
 
 // A minimal valid scene whose mesh file sits beside it; `extra` is appended verbatim.
 std::string sceneWith(const std::string& extra, const std::string& name = "scene.toml") {
     writeTempFile("quad.obj", kQuadObj);
+    writeTempFile("two.obj", kTwoObj);
+    writeTempFile("two.mtl", kTwoMtl);
     return writeTempFile(name, "[[material]]\nname = \"white\"\nalbedo = [0.5, 0.5, 0.5]\n\n"
                                "[[mesh]]\nfile = \"quad.obj\"\nmaterial = \"white\"\n" +
                                    extra);
@@ -115,6 +123,33 @@ TEST(SceneLoader, EnvironmentMapFromSharedData) {
     EXPECT_EQ(s.environment.map.width(), 512);
 }
 
+TEST(SceneLoader, MeshMaterialsMapToSceneMaterialsByName) {
+    Scene s = loadScene(sceneWith("[[material]]\nname = \"glossy\"\nalbedo = [0.2, 0.2, 0.2]\n"
+                                  "specular = [0.5, 0.5, 0.5]\nexponent = 40\n"
+                                  "[[mesh]]\nfile = \"two.obj\"\nmaterials = { red = \"glossy\" }\n"));
+    std::map<std::string, std::string> materialOfMesh; // MTL group -> the scene material it got
+    for (const Mesh& m : s.meshes) {
+        materialOfMesh[m.name.substr(m.name.rfind(':') + 1)] = s.materials.at(m.material).name;
+    }
+    EXPECT_EQ(materialOfMesh["red"], "glossy");
+    EXPECT_EQ(materialOfMesh["blue"], "blue"); // unmapped: the MTL's own material
+    // The replaced MTL material is not added: it would count as a material nothing uses.
+    std::set<std::string> names;
+    for (const Material& m : s.materials) names.insert(m.name);
+    EXPECT_EQ(names, (std::set<std::string>{"white", "glossy", "blue"}));
+    EXPECT_TRUE(s.features().glossy);
+}
+
+TEST(SceneLoader, AnEmptySceneIsAnErrorNamingTheFile) {
+    std::string path = writeTempFile("empty.toml", "[[light]]\nposition = [0, 1, 0]\nintensity = [1, 1, 1]\n");
+    std::string e = loadError(path);
+    EXPECT_NE(e.find(path + ": the scene has no triangles"), std::string::npos) << e;
+    // Triangles that cleanup drops (all degenerate) leave nothing either.
+    std::string obj = writeTempFile("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+    e = loadError(obj);
+    EXPECT_NE(e.find(obj + ": the scene has no triangles"), std::string::npos) << e;
+}
+
 struct BadScene {
     const char* name;
     std::string extra;
@@ -158,6 +193,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"duplicate_material", "[[material]]\nname = \"white\"\n", 9, "duplicate material name 'white'"},
         BadScene{"unknown_material", "[[mesh]]\nfile = \"quad.obj\"\nmaterial = \"gold\"\n", 10,
                  "no [[material]] named 'gold'"},
+        BadScene{"unknown_mtl_material", "[[mesh]]\nfile = \"two.obj\"\nmaterials = { green = \"white\" }\n", 10,
+                 "two.obj has no MTL material 'green' (it has: blue, red)"},
+        BadScene{"unknown_mapped_material", "[[mesh]]\nfile = \"two.obj\"\nmaterials = { red = \"gold\" }\n", 10,
+                 "materials.red: no [[material]] named 'gold'"},
+        BadScene{"material_and_materials",
+                 "[[mesh]]\nfile = \"two.obj\"\nmaterial = \"white\"\nmaterials = { red = \"white\" }\n", 11,
+                 "give either material or materials, not both"},
         BadScene{"missing_mesh", "[[mesh]]\nfile = \"nothere.obj\"\n", 9, "file 'nothere.obj' not found"},
         BadScene{"negative_scale", "[[mesh]]\nfile = \"quad.obj\"\nscale = -1.0\n", 10, "scale: value -1 must be positive"},
         BadScene{"negative_emission", "[[mesh]]\nfile = \"quad.obj\"\nemission = [1, -1, 1]\n", 10,
