@@ -140,6 +140,20 @@ TEST(SceneLoader, MeshMaterialsMapToSceneMaterialsByName) {
     EXPECT_TRUE(s.features().glossy);
 }
 
+TEST(SceneLoader, McGuireGlossyGetsTheExactMaterialsOfItsSceneFile) {
+    Scene s = loadScene(sourcePath("data/external/cornell-glossy-point.toml"));
+    std::map<std::string, std::string> materialOfMesh;
+    for (const Mesh& m : s.meshes) {
+        materialOfMesh[m.name.substr(m.name.rfind(':') + 1)] = s.materials.at(m.material).name;
+    }
+    EXPECT_EQ(materialOfMesh["sphere"], "glossy-sphere");
+    EXPECT_EQ(materialOfMesh["shortBox"], "glossy-box");
+    EXPECT_EQ(materialOfMesh["light"], "light-panel");
+    EXPECT_EQ(materialOfMesh["floor"], "floor");
+    EXPECT_EQ(s.features().pointLights, 1u);
+    EXPECT_EQ(s.features().emissiveMeshes, 0u);
+}
+
 TEST(SceneLoader, AnEmptySceneIsAnErrorNamingTheFile) {
     std::string path = writeTempFile("empty.toml", "[[light]]\nposition = [0, 1, 0]\nintensity = [1, 1, 1]\n");
     std::string e = loadError(path);
