@@ -24,6 +24,15 @@ Bounds Scene::bounds() const {
     return b;
 }
 
+std::vector<Light> Scene::lightsAt(double time) const {
+    std::vector<Light> out;
+    out.reserve(lights.size());
+    for (const Light& l : lights) {
+        out.push_back(l.at(time));
+    }
+    return out;
+}
+
 SceneFeatures Scene::features() const {
     SceneFeatures f;
     f.triangles = triangleCount();
@@ -41,6 +50,9 @@ SceneFeatures Scene::features() const {
         (l.type == Light::Type::Point ? f.pointLights : f.spotLights)++;
     }
     f.animated = camera.animated();
+    for (const Light& l : lights) {
+        f.animated |= l.animated();
+    }
     for (const Mesh& m : meshes) {
         if (m.emissive()) {
             ++f.emissiveMeshes;
@@ -88,6 +100,9 @@ void scaleScene(Scene& scene, float factor) {
     for (Light& l : scene.lights) {
         l.position *= factor;
         l.intensity *= factor * factor;
+        for (LightKeyframe& k : l.keys) {
+            k.position *= factor;
+        }
     }
     auto scalePose = [factor](CameraPose& p) {
         p.position *= factor;

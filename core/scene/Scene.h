@@ -36,6 +36,9 @@ struct Scene {
     // Bounds of all geometry over its whole motion (rotations' arcs between keys included).
     Bounds bounds() const;
     SceneFeatures features() const;
+    // Every light as it is at `time` (keyframed ones moved, the rest as they are), in the order of
+    // `lights`: what renderers upload and shade with for an image at that time.
+    std::vector<Light> lightsAt(double time) const;
 };
 
 // Multiplies every length by `factor` and light intensities by factor^2, so that radiance (and

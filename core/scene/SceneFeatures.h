@@ -22,7 +22,7 @@ struct SceneFeatures {
     std::size_t spotLights = 0;
     std::size_t emissiveMeshes = 0;
     std::size_t emissiveTriangles = 0;
-    bool animated = false; // any keyframed mesh or camera
+    bool animated = false; // any keyframed mesh, camera or light
 
     std::size_t shadowCastingLights() const { return pointLights + spotLights; }
     // Human-readable multi-line summary (for `bundlelab info`).

@@ -344,6 +344,19 @@ Light readLight(StrictTable& t) {
             t.fail("falloff", "value " + formatNumber(l.falloffDegrees) + " outside [0, cone_angle]");
         }
     }
+    std::vector<StrictTable> keys = t.tables("keyframe");
+    std::vector<double> times = readKeyTimes(keys);
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        LightKeyframe k;
+        k.time = times[i];
+        k.position = keys[i].vec3("position", l.position);
+        if (l.type == Light::Type::Spot) {
+            k.direction = keys[i].has("direction") ? unitDirection(keys[i], "direction", keys[i].vec3("direction"))
+                                                   : l.direction;
+        }
+        l.keys.push_back(k);
+        keys[i].finish();
+    }
     t.finish();
     return l;
 }

@@ -116,6 +116,19 @@ TEST(SceneLoader, LightsAndEnvironment) {
     EXPECT_EQ(s.features().spotLights, 1u);
 }
 
+TEST(SceneLoader, LightKeyframes) {
+    Scene s = loadScene(sceneWith("[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\nintensity = [1, 1, 1]\n"
+                                  "direction = [0, -1, 0]\ncone_angle = 30\n"
+                                  "[[light.keyframe]]\ntime = 0.0\n"
+                                  "[[light.keyframe]]\ntime = 1.0\nposition = [2, 1, 0]\ndirection = [0, 0, -3]\n"));
+    ASSERT_EQ(s.lights.size(), 1u);
+    ASSERT_EQ(s.lights[0].keys.size(), 2u);
+    EXPECT_EQ(s.lights[0].keys[0].position, glm::vec3(0, 1, 0)); // a key without position keeps the light's
+    EXPECT_EQ(s.lights[0].keys[1].direction, glm::vec3(0, 0, -1)); // unit
+    EXPECT_EQ(s.lightsAt(0.5)[0].position, glm::vec3(1, 1, 0));
+    EXPECT_TRUE(s.features().animated);
+}
+
 TEST(SceneLoader, EnvironmentMapFromSharedData) {
     std::string hdr = std::filesystem::absolute(sharedPath("data/envmap/classroom-sky.hdr")).string();
     Scene s = loadScene(sceneWith("[environment]\nfile = \"" + hdr + "\"\nscale = 2.0\n"));
@@ -229,6 +242,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"env_both", "[environment]\nradiance = [1, 1, 1]\nfile = \"x.hdr\"\n", 0, "exactly one of"},
         BadScene{"keyframe_order", "[[mesh.keyframe]]\ntime = 1.0\n[[mesh.keyframe]]\ntime = 0.5\n", 11,
                  "keyframe times must increase"},
+        BadScene{"light_keyframe_order",
+                 "[[light]]\nposition = [0, 1, 0]\nintensity = [1, 1, 1]\n[[light.keyframe]]\ntime = 1.0\n"
+                 "[[light.keyframe]]\ntime = 1.0\n",
+                 14, "keyframe times must increase"},
+        BadScene{"point_light_keyframe_direction",
+                 "[[light]]\nposition = [0, 1, 0]\nintensity = [1, 1, 1]\n[[light.keyframe]]\ntime = 0.0\n"
+                 "direction = [0, 0, 1]\n",
+                 13, "unknown key 'direction'"},
         BadScene{"syntax", "x = [1, 2\n", 0, "TOML syntax error"}),
     [](const ::testing::TestParamInfo<BadScene>& param) { return std::string(param.param.name); });
 

@@ -72,3 +72,28 @@ TEST(SceneMotion, BoundsContainRotationCombinedWithTranslation) {
     EXPECT_LE(glm::length(b.lo - sampled.lo), kAllowedLooseness * sampled.radius());
     EXPECT_LE(glm::length(b.hi - sampled.hi), kAllowedLooseness * sampled.radius());
 }
+
+TEST(SceneMotion, KeyframedLightsMoveLinearlyAndClampOutsideTheirKeys) {
+    Scene scene;
+    Light spot;
+    spot.type = Light::Type::Spot;
+    spot.position = glm::vec3(9.0f); // replaced by the keys
+    spot.intensity = glm::vec3(1.0f);
+    spot.keys.push_back({0.0, glm::vec3(0, 1, 0), glm::vec3(0, -1, 0)});
+    spot.keys.push_back({2.0, glm::vec3(4, 1, 0), glm::vec3(1, 0, 0)});
+    scene.lights.push_back(spot);
+    Light fixed;
+    fixed.position = glm::vec3(0, 5, 0);
+    scene.lights.push_back(fixed);
+
+    const std::vector<Light> mid = scene.lightsAt(1.0);
+    ASSERT_EQ(mid.size(), 2u);
+    EXPECT_EQ(mid[0].position, glm::vec3(2, 1, 0));
+    EXPECT_NEAR(glm::length(mid[0].direction), 1.0f, 1e-6f);
+    EXPECT_NEAR(mid[0].direction.x, -mid[0].direction.y, 1e-6f); // halfway between -y and +x
+    EXPECT_EQ(mid[0].intensity, glm::vec3(1.0f));
+    EXPECT_EQ(mid[1].position, glm::vec3(0, 5, 0));
+    EXPECT_EQ(scene.lightsAt(-1.0)[0].position, glm::vec3(0, 1, 0));
+    EXPECT_EQ(scene.lightsAt(5.0)[0].position, glm::vec3(4, 1, 0));
+    EXPECT_TRUE(scene.features().animated);
+}
