@@ -84,7 +84,7 @@ GpuScene::GpuScene(const vk::Context& ctx, const Scene& scene, const atlas::Atla
         materials.push_back(toGpuMaterial(m));
     }
     mMaterials = vk::makeBuffer<shader::GpuMaterial>(ctx, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    for (const Light& l : scene.lights) {
+    for (const Light& l : scene.lightsAt(0.0)) {
         mGpuLights.push_back(toGpuLight(l));
     }
     mLights = vk::makeBuffer<shader::GpuLight>(ctx, mGpuLights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -120,6 +120,16 @@ GpuScene::GpuScene(const vk::Context& ctx, const Scene& scene, const atlas::Atla
     // Longitude wraps around; latitude stops at the poles.
     mEnvironmentSampler = vk::makeSampler(ctx.device(), VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT,
                                           VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+}
+
+void GpuScene::setLightTime(const vk::Context& ctx, double time) {
+    mGpuLights.clear();
+    for (const Light& l : mScene->lightsAt(time)) {
+        mGpuLights.push_back(toGpuLight(l));
+    }
+    if (!mGpuLights.empty()) {
+        mLights.upload(ctx, mGpuLights.data(), mGpuLights.size() * sizeof(shader::GpuLight));
+    }
 }
 
 VkImageView GpuScene::materialTexture(std::uint32_t material) const {

@@ -63,6 +63,9 @@ public:
     VkBuffer sceneTriangleBuffer() const; // uint per atlas triangle: its GpuScene triangle
     const std::vector<GpuDraw>& draws() const { return mDraws; }
     const std::vector<shader::GpuLight>& lights() const { return mGpuLights; }
+    // Moves keyframed lights to `time` (Scene::lightsAt) in lights() and the light buffer, which
+    // start at time 0. A host write: call it between submissions, not while one may read it.
+    void setLightTime(const vk::Context& ctx, double time);
 
     // Texture of material m (a white texel when it has none), and the shared sampler.
     VkImageView materialTexture(std::uint32_t material) const;

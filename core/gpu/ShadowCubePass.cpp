@@ -58,7 +58,7 @@ void ShadowCubePass::record(VkCommandBuffer cmd, double time, vk::GpuTimer* time
             for (const GpuDraw& d : mScene->draws()) {
                 shader::ShadowPush push{};
                 push.model = mScene->modelMatrix(d.mesh, time);
-                push.lightPosition = mScene->lights()[light].position;
+                push.lightPosition = mScene->scene().lights[light].at(time).position;
                 push.nearPlane = mScene->shadowNear();
                 push.face = face;
                 vkCmdPushConstants(cmd, mPipelineLayout.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,

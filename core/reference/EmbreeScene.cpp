@@ -48,7 +48,7 @@ RTCRayHit makeRayHit(const glm::vec3& origin, const glm::vec3& direction, float 
 }
 } // namespace
 
-EmbreeScene::EmbreeScene(const Scene& scene, double time) : mScene(&scene) {
+EmbreeScene::EmbreeScene(const Scene& scene, double time) : mScene(&scene), mTime(time) {
     mDevice = rtcNewDevice(nullptr);
     if (!mDevice) {
         throw Error("Embree: cannot create a device (" + std::to_string(rtcGetDeviceError(nullptr)) + ")");

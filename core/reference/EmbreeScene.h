@@ -44,6 +44,7 @@ public:
     // World-space vertices of a triangle (at the baked time).
     void triangle(std::uint32_t mesh, std::uint32_t tri, glm::vec3& a, glm::vec3& b, glm::vec3& c) const;
     const Scene& scene() const { return *mScene; }
+    double time() const { return mTime; } // the scene time it is baked at
 
     // Origin for a ray leaving a surface point on the side of `normal` (oriented toward the ray):
     // pushed off by a few ulps of the triangle's coordinates, so rays never re-hit their own
@@ -52,6 +53,7 @@ public:
 
 private:
     const Scene* mScene;
+    double mTime = 0.0;
     RTCDevice mDevice = nullptr;
     RTCScene mRtcScene = nullptr;
     std::vector<std::vector<glm::vec3>> mPositions; // world space, per mesh

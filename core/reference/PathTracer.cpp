@@ -47,7 +47,7 @@ PathTracer::PathTracer(const EmbreeScene& geometry, const LightSampler& lights, 
     for (const Material& m : geometry.scene().materials) {
         mMaterials.push_back(toGpuMaterial(m));
     }
-    for (const Light& l : geometry.scene().lights) {
+    for (const Light& l : geometry.scene().lightsAt(geometry.time())) {
         mDeltaLights.push_back(toGpuLight(l));
     }
 }

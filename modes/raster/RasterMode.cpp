@@ -135,6 +135,9 @@ void RasterMode::iterate(const IterationInfo& info) {
     const shader::GpuCamera camera = makeGpuCamera(scene.camera, info.time, g.scene->cameraNear());
     // Static scenes need their shadow maps once; animated ones whenever the time changes.
     const bool renderShadows = !mShadowTime || (g.scene->features().animated && *mShadowTime != info.time);
+    if (renderShadows) {
+        g.scene->setLightTime(*mContext, info.time); // keyframed lights move with their shadows
+    }
 
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
