@@ -256,3 +256,77 @@ TEST_F(BundlePoolTest, LimitsComeFromTheCapOrTheDevice) {
     EXPECT_NE(bl::test::errorOf([&] { BundlePool none(ctx(), *gpuScene, options); }).find("hold nothing"),
               std::string::npos);
 }
+
+// Point splats (imperfect bundles): each splat covers its disc, projected, and nothing else; its
+// fragments lie exactly on its plane and carry its id; splats with no usable disc draw nothing.
+TEST_F(BundlePoolTest, PointSplatsCoverTheirDiscsExactly) {
+    if (!ctx().geometryShader()) GTEST_SKIP() << "hit payload needs gl_PrimitiveID";
+    constexpr std::uint32_t kSide = 256;
+    constexpr int kGrid = 8;            // kGrid x kGrid splats in the plane z = 0
+    constexpr float kPitch = 1.0f;      // world units between splat centres
+    constexpr float kRadius = 0.3f;     // world units
+    const glm::vec3 direction = glm::normalize(glm::vec3(0.0f, 0.0f, -1.0f));
+    const float tilt = 60.0f;           // degrees between the splats' normal and the direction
+    const glm::vec3 normal(0.0f, std::sin(glm::radians(tilt)), std::cos(glm::radians(tilt)));
+    std::vector<shader::BundleSplat> splats;
+    for (int y = 0; y < kGrid; ++y) {
+        for (int x = 0; x < kGrid; ++x) {
+            splats.push_back({glm::vec3((x - kGrid / 2 + 0.5f) * kPitch, (y - kGrid / 2 + 0.5f) * kPitch, 0.0f),
+                              kRadius, normal, 3u});
+        }
+    }
+    // Refused discs: NaN radius, zero radius, an unnormalized normal.
+    splats.push_back({glm::vec3(0.0f), std::nanf(""), normal, 0u});
+    splats.push_back({glm::vec3(0.0f), 0.0f, normal, 0u});
+    splats.push_back({glm::vec3(0.0f), kRadius, glm::vec3(0.0f), 0u});
+    vk::Buffer buffer(ctx(), splats.size() * sizeof(shader::BundleSplat),
+                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                          VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                      vk::MemoryUse::Device);
+    buffer.upload(ctx(), splats.data(), splats.size() * sizeof(shader::BundleSplat));
+
+    BundlePoolOptions options;
+    options.slotPixels = kSide * kSide;
+    options.payload = BundlePayload::Hit;
+    BundlePool pool(ctx(), *gpuScene, options);
+    const float extent = kGrid * kPitch * 0.5f * std::sqrt(2.0f) + kRadius;
+    const shader::BundleFrame frame = bundleFrameForSphere(direction, 0.0f, glm::vec3(0.0f), extent, kSide);
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+        pool.recordReset(cmd);
+        pool.recordBuild(cmd, 0, frame,
+                         BundleGeometry::pointSplats(deviceAddress(ctx(), buffer), std::uint32_t(splats.size())));
+    });
+    const BundlePoolStatus status = pool.status();
+    ASSERT_FALSE(status.overflowed());
+    const auto nodes = pool.readNodes(status.requested);
+    const auto hits = pool.readHits(status.requested);
+    const auto heads = pool.readHeads(0);
+    std::vector<std::size_t> perSplat(splats.size(), 0);
+    double worstDepth = 0.0;
+    std::size_t outside = 0;
+    for (std::uint32_t j = 0; j < kSide; ++j) {
+        for (std::uint32_t i = 0; i < kSide; ++i) {
+            for (const Fragment& f : walk(heads, nodes, std::size_t(j) * kSide + i)) {
+                const shader::BundleHit& h = hits.at(f.node);
+                ASSERT_LT(h.id, splats.size());
+                ASSERT_NE(h.material & shader::kBundleHitSplat, 0u);
+                ++perSplat[h.id];
+                const shader::BundleSplat& s = splats[h.id];
+                const glm::vec3 p = pixelOrigin(frame, i, j) + f.depth * frame.direction;
+                worstDepth = std::max(worstDepth, double(std::abs(glm::dot(p - s.position, s.normal))));
+                outside += glm::length(p - s.position) > kRadius * (1.0f + 1e-4f);
+            }
+        }
+    }
+    // Projected disc: an ellipse of area pi r^2 |cos(tilt)|, in pixels.
+    const double expected = glm::pi<double>() * kRadius * kRadius * std::cos(glm::radians(double(tilt))) /
+                            (double(frame.pixelSize) * frame.pixelSize);
+    double total = 0.0;
+    for (int k = 0; k < kGrid * kGrid; ++k) total += double(perSplat[k]);
+    std::printf("splats: %.1f fragments per disc, %.1f expected; worst distance from the plane %.3g\n",
+                total / (kGrid * kGrid), expected, worstDepth);
+    EXPECT_NEAR(total / (kGrid * kGrid), expected, 0.02 * expected);
+    EXPECT_EQ(outside, 0u);
+    EXPECT_LT(worstDepth, 1e-5);
+    for (std::size_t k = kGrid * kGrid; k < splats.size(); ++k) EXPECT_EQ(perSplat[k], 0u) << "refused splat " << k;
+}
