@@ -8,6 +8,7 @@
 #include "bundle/DirectionSampler.h"
 #include "reference/EmbreeScene.h"
 #include "scene/SceneLoader.h"
+#include "support/AnalyticScenes.h"
 #include "support/TestFiles.h"
 #include "support/VulkanTest.h"
 #include "vk/Commands.h"
@@ -329,4 +330,39 @@ TEST_F(BundlePoolTest, PointSplatsCoverTheirDiscsExactly) {
     EXPECT_EQ(outside, 0u);
     EXPECT_LT(worstDepth, 1e-5);
     for (std::size_t k = kGrid * kGrid; k < splats.size(); ++k) EXPECT_EQ(perSplat[k], 0u) << "refused splat " << k;
+}
+
+// Defect 5: vertex normals that cancel (zero, or opposite at the corners: a folded or badly
+// exported mesh) must not put NaN into the payload; the fragment falls back to its plane's normal.
+TEST_F(BundlePoolTest, CancellingVertexNormalsGiveAFiniteNormal) {
+    if (!ctx().geometryShader()) GTEST_SKIP() << "hit payload needs gl_PrimitiveID";
+    Scene s;
+    s.materials.push_back(Material{});
+    Mesh square = bl::test::makeSquare(2.0f, 0);
+    ASSERT_EQ(square.normals.size(), square.positions.size());
+    for (std::size_t v = 0; v < square.normals.size(); ++v) {
+        square.normals[v] = glm::vec3(0.0f); // what a file with zero normals gives, uncleaned
+    }
+    s.meshes.push_back(square);
+    gpu::GpuScene folded(ctx(), s);
+    BundlePoolOptions options;
+    options.slotPixels = 64 * 64;
+    options.payload = BundlePayload::Hit;
+    BundlePool pool(ctx(), folded, options);
+    const Bounds b = s.bounds();
+    const shader::BundleFrame frame = bundleFrameForSphere(glm::vec3(0, -1, 0), 0.2f, b.center(), b.radius(), 64);
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+        pool.recordReset(cmd);
+        pool.recordBuild(cmd, 0, frame, BundleGeometry::triangles(0.0));
+    });
+    const BundlePoolStatus status = pool.status();
+    ASSERT_FALSE(status.overflowed());
+    ASSERT_GT(status.requested, 100u);
+    std::size_t bad = 0;
+    for (const shader::BundleHit& h : pool.readHits(status.requested)) {
+        const glm::vec3 n = shader::blUnpackOctahedral(h.normal);
+        // The plane's normal is +-y; a NaN would unpack to some other (finite) direction.
+        bad += !std::isfinite(n.x) || std::abs(std::abs(n.y) - 1.0f) > 1e-3f;
+    }
+    EXPECT_EQ(bad, 0u) << "of " << status.requested;
 }
