@@ -45,7 +45,8 @@ std::vector<std::string> writeRenderOutputs(const std::string& exrPath, const Im
         w.field("image", exr.filename().string()).field("preview", png.filename().string());
         w.field("width", images.radiance().width()).field("height", images.radiance().height());
         w.field("iterations", images.iterations).field("seed", static_cast<unsigned long long>(record.seed));
-        w.field("wall_seconds", record.wallSeconds).field("partial", record.partial);
+        w.field("wall_seconds", record.wallSeconds).field("setup_seconds", record.setupSeconds);
+        w.field("partial", record.partial).field("frame", record.frame).field("scene_time", record.sceneTime);
         w.field("non_finite_samples", static_cast<unsigned long long>(images.nonFiniteSamples));
         const double samples = double(images.radiance().pixelCount()) * images.iterations;
         w.field("samples_per_second", record.wallSeconds > 0.0 ? samples / record.wallSeconds : 0.0);

@@ -13,8 +13,11 @@ struct RenderRecord {
     std::string mode;
     std::string device;     // "" for CPU modes
     std::uint64_t seed = 0;
-    double wallSeconds = 0.0;
+    double wallSeconds = 0.0;  // in iterate() only
+    double setupSeconds = 0.0; // in Mode::setScene (upload, pipelines, precomputation)
     bool partial = false;   // an error stopped the render before its budget
+    std::uint32_t frame = 0;   // of a frame schedule (0 for a still)
+    double sceneTime = 0.0;    // scene time of the frame, seconds
 };
 
 // Returns the paths written (EXR, PNG, JSON).

@@ -1,10 +1,14 @@
 // bundlelab render SCENE --mode M --out FILE.exr [--width W --height H]
 //                  [--spp N | --iterations N | --time SECONDS] [--seed S] [--device D] [--set k=v ...]
+//                  [--scene-time T] [--frames N [--fps R]]
+// With --frames N > 1 the scene is rendered at times T + f / R, f = 0 .. N-1, each frame its own
+// estimate with the whole budget, written as FILE.frame0000.exr (.png, .json) and so on.
 #include "base/Error.h"
 #include "base/Log.h"
 #include "cli/Commands.h"
 #include "cli/FiniteRange.h"
 #include "cli/OutputFiles.h"
+#include "modes/FrameSchedule.h"
 #include "modes/Registry.h"
 #include "scene/SceneLoader.h"
 #include "vk/Context.h"
@@ -30,7 +34,9 @@ struct RenderOptions {
     std::uint32_t iterations = 0;
     double seconds = 0.0;
     std::uint64_t seed = 0;
-    double time = 0.0;
+    double time = 0.0; // scene time of the (first) frame
+    std::uint32_t frames = 1;
+    double frameRate = kDefaultFrameRate;
     std::string device;
     bool validation = false;
     std::vector<std::string> assignments;
@@ -54,10 +60,71 @@ void printTimings(const Mode& mode) {
     }
 }
 
+// Renders one frame (setScene, then the budget of iterations) into `out`; prints its summary.
+void renderFrame(const RenderOptions& o, const FrameSchedule& schedule, std::uint32_t frame, const std::string& out,
+                 const Scene& scene, Mode& mode, vk::Context* ctx, RenderRecord& record) {
+    using Clock = std::chrono::steady_clock;
+    record.frame = frame;
+    record.sceneTime = schedule.timeOf(frame);
+    record.wallSeconds = 0.0;
+    const auto setupStart = Clock::now();
+    mode.setScene(scene, ctx); // a new estimate for every frame
+    record.setupSeconds = std::chrono::duration<double>(Clock::now() - setupStart).count();
+
+    // Budget: iterations (--spp is the same for modes whose iteration is one sample per pixel) or
+    // wall time; one iteration when nothing is given.
+    const std::uint32_t iterations = o.spp ? o.spp : o.iterations ? o.iterations : (o.seconds > 0 ? 0 : 1);
+    // Wall time counts iterate() only, as the experiment runner does: writing checkpoints is not
+    // the method's cost, and samples/s must not depend on how often one asks for them.
+    std::uint32_t done = 0;
+    try {
+        while (iterations ? done < iterations : record.wallSeconds < o.seconds) {
+            const auto start = Clock::now();
+            mode.iterate(schedule.iteration(frame, done, o.seed));
+            record.wallSeconds += std::chrono::duration<double>(Clock::now() - start).count();
+            ++done;
+            if (std::find(o.checkpoints.begin(), o.checkpoints.end(), done) != o.checkpoints.end()) {
+                writeRenderOutputs(checkpointPath(out, done), mode.resolve(), mode, record);
+                std::cout << "checkpoint " << done << ": " << checkpointPath(out, done) << "\n";
+            }
+        }
+    } catch (const std::exception& e) {
+        // Keep what was computed: write it as <out>.partial.exr, then report the error.
+        record.partial = true;
+        if (done > 0) {
+            std::string partial = std::filesystem::path(out).replace_extension(".partial.exr").string();
+            writeRenderOutputs(partial, mode.resolve(), mode, record);
+            std::cerr << "bundlelab: " << done << " iterations saved to " << partial << "\n";
+        }
+        throw;
+    }
+    ImageSet images = mode.resolve();
+    std::vector<std::string> written = writeRenderOutputs(out, images, mode, record);
+    const double samples = double(images.radiance().pixelCount()) * done;
+    if (schedule.frames > 1) {
+        std::printf("frame %u of %u, scene time %.6g s\n", frame, schedule.frames, record.sceneTime);
+    }
+    std::printf("%s: %s, %u iterations, %dx%d, %.3f s, %.4g samples/s; set-up %.3f s\n", o.mode.c_str(),
+                o.scene.c_str(), done, images.radiance().width(), images.radiance().height(), record.wallSeconds,
+                samples / std::max(record.wallSeconds, 1e-9), record.setupSeconds);
+    for (const auto& [name, value] : images.counters) {
+        std::printf("%s: %.6g (%.4g per second)\n", name.c_str(), value, value / std::max(record.wallSeconds, 1e-9));
+    }
+    printTimings(mode);
+    if (images.nonFiniteSamples) {
+        log::warn(std::to_string(images.nonFiniteSamples) + " NaN/Inf samples were discarded");
+    }
+    for (const std::string& f : written) {
+        std::cout << "wrote " << f << "\n";
+    }
+}
+
 int runRender(const RenderOptions& o) {
     if (std::filesystem::path(o.out).extension() != ".exr") {
         throw Error("--out " + o.out + ": the output must be an .exr file (a .png preview is written beside it)");
     }
+    const FrameSchedule schedule{o.frames, o.frameRate, o.time};
+    schedule.validate("--frames/--fps/--scene-time");
     const ModeEntry& entry = findMode(o.mode);
     std::unique_ptr<vk::Context> ctx; // declared before the mode: the mode's GPU objects go first
     std::unique_ptr<Mode> mode = createMode(o.mode, o.assignments); // bad parameters fail before any work
@@ -71,52 +138,10 @@ int runRender(const RenderOptions& o) {
         device = ctx->info().describe();
         std::cout << "device: " << device << "\n";
     }
-    mode->setScene(scene, ctx.get());
-
-    // Budget: iterations (--spp is the same for modes whose iteration is one sample per pixel) or
-    // wall time; one iteration when nothing is given.
-    const std::uint32_t iterations = o.spp ? o.spp : o.iterations ? o.iterations : (o.seconds > 0 ? 0 : 1);
-    // Wall time counts iterate() only, as the experiment runner does: writing checkpoints is not
-    // the method's cost, and samples/s must not depend on how often one asks for them.
-    using Clock = std::chrono::steady_clock;
-    RenderRecord record{o.scene, o.mode, device, o.seed, 0.0, false};
-    std::uint32_t done = 0;
-    try {
-        while (iterations ? done < iterations : record.wallSeconds < o.seconds) {
-            const auto start = Clock::now();
-            mode->iterate({done, o.seed, o.time});
-            record.wallSeconds += std::chrono::duration<double>(Clock::now() - start).count();
-            ++done;
-            if (std::find(o.checkpoints.begin(), o.checkpoints.end(), done) != o.checkpoints.end()) {
-                writeRenderOutputs(checkpointPath(o.out, done), mode->resolve(), *mode, record);
-                std::cout << "checkpoint " << done << ": " << checkpointPath(o.out, done) << "\n";
-            }
-        }
-    } catch (const std::exception& e) {
-        // Keep what was computed: write it as <out>.partial.exr, then report the error.
-        record.partial = true;
-        if (done > 0) {
-            std::string partial = std::filesystem::path(o.out).replace_extension(".partial.exr").string();
-            writeRenderOutputs(partial, mode->resolve(), *mode, record);
-            std::cerr << "bundlelab: " << done << " iterations saved to " << partial << "\n";
-        }
-        throw;
-    }
-    ImageSet images = mode->resolve();
-    std::vector<std::string> written = writeRenderOutputs(o.out, images, *mode, record);
-    const double samples = double(images.radiance().pixelCount()) * done;
-    std::printf("%s: %s, %u iterations, %dx%d, %.3f s, %.4g samples/s\n", o.mode.c_str(), o.scene.c_str(), done,
-                images.radiance().width(), images.radiance().height(), record.wallSeconds,
-                samples / std::max(record.wallSeconds, 1e-9));
-    for (const auto& [name, value] : images.counters) {
-        std::printf("%s: %.6g (%.4g per second)\n", name.c_str(), value, value / std::max(record.wallSeconds, 1e-9));
-    }
-    printTimings(*mode);
-    if (images.nonFiniteSamples) {
-        log::warn(std::to_string(images.nonFiniteSamples) + " NaN/Inf samples were discarded");
-    }
-    for (const std::string& f : written) {
-        std::cout << "wrote " << f << "\n";
+    RenderRecord record{o.scene, o.mode, device, o.seed};
+    for (std::uint32_t frame = 0; frame < schedule.frames; ++frame) {
+        const std::string out = schedule.frames > 1 ? framePath(o.out, frame) : o.out;
+        renderFrame(o, schedule, frame, out, scene, *mode, ctx.get(), record);
     }
     if (ctx && ctx->validationErrorCount() > 0) {
         std::cerr << "bundlelab: " << ctx->validationErrorCount() << " Vulkan validation errors\n";
@@ -147,7 +172,12 @@ void addRenderCommand(CLI::App& app, Action& action) {
     spp->excludes(its)->excludes(secs);
     its->excludes(secs);
     cmd->add_option("--seed", o->seed, "run seed");
-    cmd->add_option("--scene-time", o->time, "scene time in seconds (animated scenes)")->check(finiteRange(-1e9, 1e9));
+    cmd->add_option("--scene-time", o->time, "scene time in seconds (animated scenes; of frame 0 with --frames)")
+        ->check(finiteRange(-1e9, 1e9));
+    cmd->add_option("--frames", o->frames, "render N frames, each with the whole budget, as FILE.frame0000.exr ...")
+        ->check(CLI::Range(1u, 1u << 20));
+    cmd->add_option("--fps", o->frameRate, "frames per second of scene time, with --frames (default 24)")
+        ->check(finiteRange(1e-6, 1e6));
     cmd->add_option("--device", o->device, "Vulkan device: index or name substring (default: a GPU, else lavapipe)");
     cmd->add_flag("--validation", o->validation, "enable Vulkan validation layers; errors fail the run");
     cmd->add_option("--set", o->assignments, "mode parameter key=value (repeatable)");

@@ -22,10 +22,15 @@ namespace vk {
 class Context;
 }
 
+// What one iterate() works on. An animated scene runs as a frame schedule (modes/FrameSchedule.h):
+// frame f at scene time t_f, with drivers calling setScene before each frame, so every frame is
+// its own estimate and `index` restarts at 0.
 struct IterationInfo {
-    std::uint32_t index = 0; // 0, 1, 2, … since setScene
-    std::uint64_t seed = 0;  // run seed; randomness derives from (seed, pixel, index, dimension)
-    double time = 0.0;       // scene time in seconds, for animated scenes
+    std::uint32_t index = 0;   // 0, 1, 2, … since setScene (within the frame)
+    std::uint64_t seed = 0;    // run seed; randomness derives from (seed, pixel, index, dimension)
+    double time = 0.0;         // scene time in seconds of this frame, for animated scenes
+    double previousTime = 0.0; // scene time of the previous frame (== time in frame 0): reprojection
+    std::uint32_t frame = 0;   // animation frame number: 0, 1, 2, …
 };
 
 // Named images of one resolve: "" is the radiance estimate, others are AOVs.
@@ -49,8 +54,9 @@ class Mode {
 public:
     virtual ~Mode() = default;
     virtual std::string_view name() const = 0;
-    // Uploads the scene and builds pipelines. `gpu` is null for CPU modes. The scene must outlive
-    // the mode.
+    // Uploads the scene and builds pipelines (the set-up time drivers report apart from iteration
+    // time), and starts a new estimate. `gpu` is null for CPU modes. The scene must outlive the
+    // mode.
     virtual void setScene(const Scene& scene, vk::Context* gpu) = 0;
     virtual void iterate(const IterationInfo& info) = 0;
     virtual ImageSet resolve() = 0;

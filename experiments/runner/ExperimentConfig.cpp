@@ -114,6 +114,16 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     } else if (exp->string("checkpoints", "log") != "log") {
         exp->fail("checkpoints", "expected \"log\" or an array of iterations");
     }
+    constexpr std::int64_t kMaxFrames = 1 << 20;
+    const std::int64_t frames = exp->integer("frames", 1);
+    if (frames < 1 || frames > kMaxFrames) {
+        exp->fail("frames", "value " + std::to_string(frames) + " outside [1, " + std::to_string(kMaxFrames) + "]");
+    }
+    cfg.frames.frames = static_cast<std::uint32_t>(frames);
+    cfg.frames.frameRate = exp->number("frame_rate", kDefaultFrameRate);
+    if (!(cfg.frames.frameRate > 0.0 && cfg.frames.frameRate <= 1e6)) {
+        exp->fail("frame_rate", "value " + formatNumber(cfg.frames.frameRate) + " outside (0, 1e6] frames per second");
+    }
     exp->finish();
 
     if (auto ref = root.table("reference")) {
@@ -264,6 +274,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
                     task.gridPoint = point;
                     task.seed = seed;
                     task.budget = budget;
+                    task.frames = cfg.frames;
                     task.needsGpu = entry->needsGpu;
                     task.referenceSettings = referenceSettings;
                     if (budget.iterations) {
@@ -282,6 +293,10 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
                                            "|" + std::to_string(budget.iterations) + "|" + formatNumber(budget.seconds) +
                                            "|" + describe(referenceSettings);
                     for (std::uint32_t c : task.checkpoints) identity += "," + std::to_string(c);
+                    if (cfg.frames.frames > 1) { // a still keeps the hash it had before frame schedules
+                        identity += "|frames " + std::to_string(cfg.frames.frames) + " at " +
+                                    formatNumber(cfg.frames.frameRate);
+                    }
                     task.hash = hashText(identity);
                     cfg.tasks.push_back(task);
                 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "config/Settings.h"
+#include "modes/FrameSchedule.h"
 
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -45,6 +46,9 @@ struct Task {
     std::uint64_t seed = 0;
     Budget budget;
     std::vector<std::uint32_t> checkpoints; // iterations; empty with a time budget: powers of two
+    // Frames of an animated scene, each run with the whole budget; frame 0 (scene time 0) is the
+    // one checkpointed and judged against the reference.
+    FrameSchedule frames;
     // Reference-mode settings this task is judged against (e.g. max_segments = 2 for methods that
     // compute direct light only): the experiment's, overridden by the mode's `reference` table.
     std::vector<std::pair<std::string, ParamValue>> referenceSettings;
@@ -59,6 +63,7 @@ struct ExperimentConfig {
     Budget budget;
     bool logCheckpoints = true;
     std::vector<std::uint32_t> checkpoints;
+    FrameSchedule frames; // [experiment] frames, frame_rate
     ReferenceSpec reference;
     std::vector<SceneEntry> scenes;
     std::vector<Task> tasks;

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -69,10 +70,19 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
     if (modeEntry.needsGpu && !gpu) {
         throw Error("task " + task.id + ": mode " + task.mode + " needs a Vulkan device");
     }
-    mode->setScene(scene, modeEntry.needsGpu ? gpu : nullptr);
+    using Clock = std::chrono::steady_clock;
+    vk::Context* device = modeEntry.needsGpu ? gpu : nullptr;
+    // Set-up (upload, pipelines, precomputation) is timed apart from iterate(): a method's cost is
+    // both, and which dominates depends on how many iterations a frame gets.
+    auto setUp = [&]() {
+        const auto start = Clock::now();
+        mode->setScene(scene, device);
+        return std::chrono::duration<double>(Clock::now() - start).count();
+    };
+    const double setupSeconds = setUp();
 
     const RunEnvironment env = currentRunEnvironment();
-    const std::string device = modeEntry.needsGpu ? gpu->info().describe() : "";
+    const std::string deviceName = modeEntry.needsGpu ? gpu->info().describe() : "";
     {
         std::ostringstream j;
         JsonWriter w(j);
@@ -80,6 +90,7 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
         w.field("scene_file", entry.file).field("mode", task.mode).field("label", task.label);
         w.field("seed", static_cast<unsigned long long>(task.seed)).field("hash", task.hash);
         w.field("budget_iterations", task.budget.iterations).field("budget_seconds", task.budget.seconds);
+        w.field("frames", task.frames.frames).field("frame_rate", task.frames.frameRate);
         w.key("checkpoints").beginArray();
         for (std::uint32_t c : task.checkpoints) w.value(c);
         w.endArray();
@@ -89,7 +100,7 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
         writeFileAtomic((dir / "task.json").string(), j.str() + "\n");
         std::ostringstream e;
         JsonWriter we(e);
-        we.beginObject().field("device", device).field("cpu", env.cpu).field("hardware_threads", env.hardwareThreads);
+        we.beginObject().field("device", deviceName).field("cpu", env.cpu).field("hardware_threads", env.hardwareThreads);
         we.field("build_type", env.buildType).field("git_revision", env.gitRevision).field("version", env.version);
         we.endObject();
         writeFileAtomic((dir / "environment.json").string(), e.str() + "\n");
@@ -100,7 +111,6 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
                           "mean_ratio_b,block_ratio_rms,block_ratio_max\n";
     ImageMetrics last;
     bool haveMetrics = false;
-    using Clock = std::chrono::steady_clock;
     double wall = 0.0; // time in iterate() only: checkpoints and metrics are not the method's cost
     std::uint32_t done = 0;
     std::uint32_t nextPowerOfTwo = 1;
@@ -134,24 +144,57 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
         metrics += row + "\n";
         writeFileAtomic((dir / "metrics.csv").string(), metrics);
     };
-    while (task.budget.iterations ? done < task.budget.iterations : wall < task.budget.seconds) {
-        auto start = Clock::now();
-        mode->iterate({done, task.seed, 0.0});
-        wall += std::chrono::duration<double>(Clock::now() - start).count();
-        ++done;
+    // One frame's budget of iterations; `afterIteration` sees the count done so far.
+    auto runFrame = [&](std::uint32_t frame, const std::function<void()>& afterIteration) {
+        while (task.budget.iterations ? done < task.budget.iterations : wall < task.budget.seconds) {
+            auto start = Clock::now();
+            mode->iterate(task.frames.iteration(frame, done, task.seed));
+            wall += std::chrono::duration<double>(Clock::now() - start).count();
+            ++done;
+            afterIteration();
+        }
+    };
+    runFrame(0, [&]() {
         if (isCheckpoint(done)) {
             checkpoint();
         }
-    }
+    });
     if (metrics.find("\n" + std::to_string(done) + ",") == std::string::npos) {
         checkpoint(); // a time budget ends between powers of two
     }
+    const std::uint32_t frameZeroIterations = done;
+    const double frameZeroWall = wall;
+    const double frameZeroGpuMs = gpuMs(mode->timings());
+    const PassTimes frameZeroPasses = mode->timings();
+
+    // The other frames of an animated scene: each a new estimate with the same budget, its image
+    // and costs recorded (frames.csv); frame 0 stays the one judged against the reference.
+    std::string frames = "frame,scene_time,iterations,setup_seconds,wall_seconds,gpu_ms\n";
+    auto frameRow = [&](std::uint32_t frame, double setup) {
+        frames += std::to_string(frame) + "," + number(task.frames.timeOf(frame)) + "," + std::to_string(done) + "," +
+                  number(setup) + "," + number(wall) + "," + number(gpuMs(mode->timings())) + "\n";
+    };
+    frameRow(0, setupSeconds);
+    if (task.frames.frames > 1) {
+        writeExr(framePath((dir / "final.exr").string(), 0), images.radiance());
+    }
+    for (std::uint32_t frame = 1; frame < task.frames.frames; ++frame) {
+        const double setup = setUp();
+        done = 0;
+        wall = 0.0;
+        runFrame(frame, []() {});
+        writeExr(framePath((dir / "final.exr").string(), frame), mode->resolve().radiance());
+        frameRow(frame, setup);
+    }
+    writeFileAtomic((dir / "frames.csv").string(), frames);
+    done = frameZeroIterations;
+    wall = frameZeroWall;
 
     writeExr((dir / "final.exr").string(), images.radiance());
     writePng((dir / "final.png").string(), images.radiance());
     writePfm((dir / "final.pfm").string(), images.radiance());
     std::string passes = "pass,total_ms,count,mean_ms\n";
-    for (const PassTime& p : mode->timings()) {
+    for (const PassTime& p : frameZeroPasses) {
         passes += csvField(p.name) + "," + number(p.totalMs) + "," + std::to_string(p.count) + "," + number(p.meanMs()) + "\n";
     }
     writeFileAtomic((dir / "passes.csv").string(), passes);
@@ -159,7 +202,7 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
     std::string row = std::to_string(task.index) + "," + csvField(task.id) + "," + csvField(task.scene) + "," +
                       csvField(task.mode) + "," + csvField(task.label) + "," + csvField(params(task)) + "," +
                       std::to_string(task.seed) + "," + std::to_string(done) + "," + number(wall) + "," +
-                      number(gpuMs(mode->timings()));
+                      number(setupSeconds) + "," + number(frameZeroGpuMs);
     if (haveMetrics) {
         for (double v : {last.mse, last.rmse, last.relMse, last.smape, last.mae, last.meanRatio.x, last.meanRatio.y,
                          last.meanRatio.z, last.blockRatios.rms}) {
@@ -177,7 +220,7 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
     writeFileAtomic((dir / "result.csv").string(), row + "\n");
     writeFileAtomic((dir / "done.json").string(), "{\n  \"hash\": \"" + task.hash + "\",\n  \"iterations\": " +
                                                       std::to_string(done) + ",\n  \"wall_seconds\": " + number(wall) +
-                                                      "\n}\n");
+                                                      ",\n  \"setup_seconds\": " + number(setupSeconds) + "\n}\n");
 }
 
 } // namespace bl

@@ -1,6 +1,8 @@
 // Runs one task of an experiment into DIR/tasks/<id>/: task.json (resolved config), checkpoint
 // EXRs, metrics.csv (iteration, wall s, GPU ms, every metric against the reference), passes.csv,
-// environment.json, final.{exr,png,pfm}, result.csv (its row of results.csv), and done.json last:
+// environment.json, final.{exr,png,pfm}, frames.csv (per frame: scene time, set-up and iteration
+// seconds) and final.frameNNNN.exr with several frames, result.csv (its row of results.csv, with
+// frame 0's set-up seconds beside its iteration seconds), and done.json last:
 // a task without done.json (killed mid-way) is redone from scratch on the next run.
 #pragma once
 
@@ -16,7 +18,7 @@ class Context;
 }
 
 inline constexpr const char* kResultsHeader =
-    "index,id,scene,mode,label,params,seed,iterations,wall_seconds,gpu_ms,mse,rmse,relmse,smape,mae,"
+    "index,id,scene,mode,label,params,seed,iterations,wall_seconds,setup_seconds,gpu_ms,mse,rmse,relmse,smape,mae,"
     "mean_ratio_r,mean_ratio_g,mean_ratio_b,block_ratio_rms,reference_noise_relmse,dir";
 
 class TaskRunner {

@@ -27,6 +27,27 @@ render_writes_outputs)
     grep -q '"device": "llvmpipe\|"device": "' "$out/img.json" || fail "json lacks device"
     grep -q "shade" "$out/log.txt" || fail "no per-pass timings printed"
     ;;
+render_frames)
+    # An animated scene as a frame schedule: one image set per frame at start + f / fps, each the
+    # same as a still rendered at that scene time; set-up time reported beside iteration time.
+    "$bl" render data/cornell-box/cornell-animated.toml --mode raster --width 32 --height 32 --spp 2 \
+        --set shadow_resolution=64 --frames 3 --fps 4 --scene-time 0.5 --out "$out/a.exr" | tee "$out/log.txt" \
+        || fail "frames render failed"
+    for f in 0 1 2; do
+        for ext in exr png json; do [[ -s "$out/a.frame000$f.$ext" ]] || fail "missing a.frame000$f.$ext"; done
+        grep -q "\"frame\": $f," "$out/a.frame000$f.json" || fail "frame $f: json lacks its frame number"
+        grep -q '"setup_seconds": [0-9]' "$out/a.frame000$f.json" || fail "frame $f: json lacks setup_seconds"
+    done
+    [[ ! -e "$out/a.exr" && ! -e "$out/a.frame0003.exr" ]] || fail "files beyond the three frames"
+    grep -q '"scene_time": 1,' "$out/a.frame0002.json" || fail "frame 2 should be at 0.5 + 2 / 4 = 1 s"
+    grep -q "set-up" "$out/log.txt" || fail "set-up time not printed"
+    "$bl" render data/cornell-box/cornell-animated.toml --mode raster --width 32 --height 32 --spp 2 \
+        --set shadow_resolution=64 --scene-time 1 --out "$out/still.exr" >/dev/null || fail "still render failed"
+    cmp -s "$out/a.frame0002.png" "$out/still.png" || fail "frame 2 differs from a still at scene time 1"
+    cmp -s "$out/a.frame0000.png" "$out/a.frame0002.png" && fail "frames 0 and 2 are the same image"
+    expected="--fps"
+    expect_error "$bl" render data/cornell-box/cornell-animated.toml --mode raster --frames 2 --fps 0 --out "$out/x.exr"
+    ;;
 render_partial_budget)
     "$bl" render data/cornell-box/cornell.toml --mode raster --width 32 --height 32 --time 0.2 \
         --out "$out/t.exr" || fail "time budget render failed"
