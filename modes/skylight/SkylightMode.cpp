@@ -67,7 +67,7 @@ struct SkylightMode::Gpu {
     vk::PipelineLayout pipelineLayout;
     vk::Pipeline pipeline;
     vk::GpuTimer timer;
-    std::vector<glm::vec3> visiblePoints; // for fit = visible
+    std::vector<glm::vec3> visiblePoints; // for fit = visible: this iteration's
     Bounds bounds;                        // the scene's, over all keyframes: computed once
     PassTimes builds;                     // bundle build ms (from the builder's timer)
     BundleStats lastStats;
@@ -189,9 +189,11 @@ void SkylightMode::iterate(const IterationInfo& info) {
     const float rotation = mSettings.getBool(kRotate) ? dir.rotation : 0.0f;
     const std::uint32_t resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
     const Bounds& bounds = g.bounds;
-    if (mSettings.getString(kFit) == "visible" && g.visiblePoints.empty()) {
-        // The visible points of the first G-buffer (later jitter moves them by under a pixel: the
-        // frame keeps a margin of one bundle pixel).
+    if (mSettings.getString(kFit) == "visible") {
+        // The visible points of this iteration's G-buffer: no margin covers jitter (at a silhouette
+        // it moves a pixel's point onto another surface), so the frame is fitted to the points the
+        // visibility pass will look up, every iteration.
+        g.visiblePoints.clear();
         std::vector<std::byte> raw = g.gbuffer->attachment(shader::kGBufferPosition).download(*mContext, VK_IMAGE_LAYOUT_GENERAL);
         const auto* p = reinterpret_cast<const glm::vec4*>(raw.data());
         for (std::size_t i = 0; i < std::size_t(width) * height; ++i) {
