@@ -164,6 +164,7 @@ TEST_F(BundleExactness, DepthComplexity250NeverLosesAFragment) {
     EXPECT_EQ(stats.tiles, 1u);
     EXPECT_EQ(stats.longestList, std::uint32_t(layers));
     EXPECT_NEAR(stats.meanListLength(), double(layers), 1e-9);
+    const std::uint64_t untiledFragments = stats.fragments;
 
     BundleBuilderOptions capped;
     capped.initialNodes = 1000;
@@ -171,7 +172,8 @@ TEST_F(BundleExactness, DepthComplexity250NeverLosesAFragment) {
     BundleBuilder tiled(ctx(), gpuScene, capped);
     check(tiled, stats);
     EXPECT_GE(stats.tiles, 4u);
-    EXPECT_EQ(stats.fragments, std::uint64_t(stats.fragments)); // counted per tile, all kept
+    // Counted per tile: every fragment of the untiled bundle in exactly one tile.
+    EXPECT_EQ(stats.fragments, untiledFragments);
     EXPECT_LE(tiled.capacity() * sizeof(shader::BundleNode), capped.memoryCapBytes);
 
     // One pixel alone needs 250 nodes: a cap below that is a clear error, not a crash.
