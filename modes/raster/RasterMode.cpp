@@ -1,7 +1,6 @@
 #include "modes/raster/RasterMode.h"
 
 #include "base/Error.h"
-#include "gpu/Accumulator.h"
 #include "sampling/PixelSamples.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
@@ -31,9 +30,8 @@ RasterMode::RasterMode(const Settings& settings) : mSettings(settings) {}
 
 struct RasterMode::Gpu {
     std::unique_ptr<gpu::GpuScene> scene;
-    std::unique_ptr<gpu::GBufferPass> gbuffer;
+    std::unique_ptr<gpu::CameraPass> camera;
     std::unique_ptr<gpu::ShadowCubePass> shadows;
-    gpu::Accumulator accum;
     vk::DescriptorSetLayout setLayout;
     vk::DescriptorPool pool;
     VkDescriptorSet set = VK_NULL_HANDLE;
@@ -79,44 +77,29 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     const VkDeviceSize pixels = VkDeviceSize(width) * height;
     const VkDeviceSize shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
     const VkDeviceSize lights = scene.lights.size();
-    ctx->requireDeviceMemory(pixels * (gpu::GBufferPass::kBytesPerPixel + gpu::Accumulator::kBytesPerPixel) +
+    ctx->requireDeviceMemory(pixels * gpu::CameraPass::bytesPerPixel(shader::kRasterAccumLayers) +
                                  shadowSide * shadowSide * 4 * (6 * lights + 1),
                              "raster at " + std::to_string(width) + "x" + std::to_string(height));
 
     auto g = std::make_unique<Gpu>();
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
-    g->gbuffer = std::make_unique<gpu::GBufferPass>(*ctx, *g->scene, width, height);
+    g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kRasterAccumLayers);
     g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene,
                                                        static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution)));
-    g->accum = gpu::Accumulator(*ctx, width, height);
     g->timer = vk::GpuTimer(*ctx);
 
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
     g->setLayout = vk::makeDescriptorSetLayout(
-        device, {{shader::kRasterBindingGBuffer, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs, shader::kGBufferAttachmentCount},
-                 {shader::kRasterBindingCamera, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
-                 {shader::kRasterBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kRasterBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kRasterBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kRasterBindingEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs},
-                 {shader::kRasterBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-    g->pool = vk::DescriptorPool(device, 1, 8);
+        device, {{shader::kRasterBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kRasterBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
+    g->pool = vk::DescriptorPool(device, 1, 1);
     g->set = g->pool.allocate(g->setLayout.get());
-    vk::DescriptorWriter writer;
-    for (std::uint32_t i = 0; i < shader::kGBufferAttachmentCount; ++i) {
-        writer.image(shader::kRasterBindingGBuffer, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->gbuffer->attachment(i).view(),
-                     VK_IMAGE_LAYOUT_GENERAL, VK_NULL_HANDLE, i);
-    }
-    writer.buffer(shader::kRasterBindingCamera, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, g->gbuffer->cameraBuffer())
-        .buffer(shader::kRasterBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->materialBuffer())
+    vk::DescriptorWriter()
         .buffer(shader::kRasterBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
         .image(shader::kRasterBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->shadows->maps().view(),
                VK_IMAGE_LAYOUT_GENERAL)
-        .image(shader::kRasterBindingEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-               g->scene->environmentView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, g->scene->environmentSampler())
-        .image(shader::kRasterBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->accum.view(), VK_IMAGE_LAYOUT_GENERAL)
         .update(device, g->set);
-    VkDescriptorSetLayout layouts[] = {g->setLayout.get()};
+    VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
     g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::RasterPush), cs);
     g->pipeline = vk::makeComputePipeline(device, kSpv_modes_raster_shade_comp, g->pipelineLayout.get());
     mGpu = std::move(g);
@@ -127,12 +110,9 @@ void RasterMode::iterate(const IterationInfo& info) {
         throw Error("raster: iterate() before setScene()");
     }
     Gpu& g = *mGpu;
-    const Scene& scene = *mScene;
-    const std::uint32_t width = g.gbuffer->width();
-    const std::uint32_t height = g.gbuffer->height();
-    const glm::vec2 sample = pixelSamplePosition(mIterations, mSettings.getBool(kJitter));
-    const glm::vec2 jitterNdc = (sample - 0.5f) * glm::vec2(2.0f / width, 2.0f / height);
-    const shader::GpuCamera camera = makeGpuCamera(scene.camera, info.time, g.scene->cameraNear());
+    const std::uint32_t width = g.camera->width();
+    const std::uint32_t height = g.camera->height();
+    const gpu::CameraSample sample = g.camera->sample(mIterations, mSettings.getBool(kJitter), info.time);
     // Static scenes need their shadow maps once; animated ones whenever the time changes.
     const bool renderShadows = !mShadowTime || (g.scene->features().animated && *mShadowTime != info.time);
     if (renderShadows) {
@@ -144,7 +124,7 @@ void RasterMode::iterate(const IterationInfo& info) {
         if (renderShadows) {
             g.shadows->record(cmd, info.time, &g.timer);
         }
-        g.gbuffer->record(cmd, camera, jitterNdc, info.time, &g.timer);
+        g.camera->record(cmd, sample, &g.timer);
 
         std::uint32_t scope = g.timer.start(cmd, "shade");
         shader::RasterPush push{};
@@ -152,11 +132,12 @@ void RasterMode::iterate(const IterationInfo& info) {
         push.shadowResolution = g.shadows->resolution();
         push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
         push.environmentRotation = g.scene->environmentRotation();
-        push.samplePosition = sample;
+        push.samplePosition = sample.samplePosition;
         push.width = width;
         push.height = height;
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 1, &g.set, 0, nullptr);
+        const VkDescriptorSet sets[] = {g.camera->set(), g.set};
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 2, sets, 0, nullptr);
         vkCmdPushConstants(cmd, g.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
         vkCmdDispatch(cmd, vk::groupCount(width, shader::kRasterGroupSize),
                       vk::groupCount(height, shader::kRasterGroupSize), 1);
@@ -176,16 +157,19 @@ ImageSet RasterMode::resolve() {
         throw Error("raster: resolve() before setScene()");
     }
     Gpu& g = *mGpu;
-    const int width = static_cast<int>(g.gbuffer->width());
-    const int height = static_cast<int>(g.gbuffer->height());
+    const int width = static_cast<int>(g.camera->width());
+    const int height = static_cast<int>(g.camera->height());
     ImageSet out;
     out.iterations = mIterations;
-    // Every iteration adds one sample to every pixel unless it was NaN/Inf: the shortfall counts those.
-    out.layers.emplace_back("", g.accum.resolve(*mContext, mIterations, &out.nonFiniteSamples));
+    // Every iteration adds one sample to every pixel: emitted + direct, and their variance.
+    gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations);
+    out.layers = std::move(estimate.layers);
+    out.nonFiniteSamples = estimate.nonFiniteSamples;
+    out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
 
     // AOVs of the last iteration's G-buffer, for inspection and later denoisers.
     auto aov = [&](std::uint32_t attachment, const char* name) {
-        std::vector<std::byte> raw = g.gbuffer->attachment(attachment).download(*mContext, VK_IMAGE_LAYOUT_GENERAL);
+        std::vector<std::byte> raw = g.camera->gbuffer().attachment(attachment).download(*mContext, VK_IMAGE_LAYOUT_GENERAL);
         const auto* texels = reinterpret_cast<const glm::vec4*>(raw.data());
         Image image(width, height);
         for (std::size_t i = 0; i < image.pixelCount(); ++i) {

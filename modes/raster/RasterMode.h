@@ -14,7 +14,7 @@
 //   jitter             true           move the sample inside the pixel from iteration 1 on
 #pragma once
 
-#include "gpu/GBufferPass.h"
+#include "gpu/CameraPass.h"
 #include "gpu/ShadowCubePass.h"
 #include "modes/Mode.h"
 

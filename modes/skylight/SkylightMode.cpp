@@ -3,8 +3,6 @@
 #include "base/Error.h"
 #include "bundle/BundleFrame.h"
 #include "bundle/DepthMapPass.h"
-#include "gpu/Accumulator.h"
-#include "sampling/PixelSamples.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
 
@@ -53,13 +51,13 @@ SkylightMode::SkylightMode(const Settings& settings) : mSettings(settings) {}
 
 struct SkylightMode::Gpu {
     std::unique_ptr<gpu::GpuScene> scene;
-    std::unique_ptr<gpu::GBufferPass> gbuffer;
+    std::unique_ptr<gpu::CameraPass> camera;
+    const gpu::GBufferPass* gbuffer = nullptr; // the camera pass's
     std::unique_ptr<BundleBuilder> builder;
     std::unique_ptr<DepthMapPass> depthMap; // visibility = depth_map
     vk::GpuImage placeholder;               // r32f 1x1 bound as the depth map otherwise
     std::unique_ptr<EnvironmentLight> environment;
     std::unique_ptr<DirectionSampler> directions;
-    gpu::Accumulator accum;
     vk::Buffer frame;
     vk::DescriptorSetLayout setLayout;
     vk::DescriptorPool pool;
@@ -99,11 +97,12 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     mIterations = 0;
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
-    ctx->requireDeviceMemory(VkDeviceSize(width) * height * (gpu::GBufferPass::kBytesPerPixel + gpu::Accumulator::kBytesPerPixel),
+    ctx->requireDeviceMemory(VkDeviceSize(width) * height * gpu::CameraPass::bytesPerPixel(shader::kSkylightAccumLayers),
                              "skylight at " + std::to_string(width) + "x" + std::to_string(height));
     auto g = std::make_unique<Gpu>();
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
-    g->gbuffer = std::make_unique<gpu::GBufferPass>(*ctx, *g->scene, width, height);
+    g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kSkylightAccumLayers);
+    g->gbuffer = &g->camera->gbuffer();
     BundleBuilderOptions options;
     options.memoryCapBytes = static_cast<std::uint64_t>(mSettings.getInt(kMemoryCap)) << 20;
     g->builder = std::make_unique<BundleBuilder>(*ctx, *g->scene, options);
@@ -120,37 +119,22 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     if (sequence == DirectionSequence::Importance && !scene.environment.present) {
         throw Error("skylight: directions=importance needs an environment in the scene");
     }
-    g->accum = gpu::Accumulator(*ctx, width, height);
     g->frame = vk::Buffer(*ctx, sizeof(shader::BundleFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
     g->timer = vk::GpuTimer(*ctx);
 
     VkDevice device = ctx->device();
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
     g->setLayout = vk::makeDescriptorSetLayout(
-        device, {{shader::kSkylightBindingGBuffer, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs, shader::kGBufferAttachmentCount},
-                 {shader::kSkylightBindingCamera, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
-                 {shader::kSkylightBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kSkylightBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
-                 {shader::kSkylightBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kSkylightBindingEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs},
+        device, {{shader::kSkylightBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
                  {shader::kSkylightBindingDepthMap, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-    g->pool = vk::DescriptorPool(device, 1, 8);
+    g->pool = vk::DescriptorPool(device, 1, 1);
     g->set = g->pool.allocate(g->setLayout.get());
-    vk::DescriptorWriter writer;
-    for (std::uint32_t i = 0; i < shader::kGBufferAttachmentCount; ++i) {
-        writer.image(shader::kSkylightBindingGBuffer, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                     g->gbuffer->attachment(i).view(), VK_IMAGE_LAYOUT_GENERAL, VK_NULL_HANDLE, i);
-    }
-    writer.buffer(shader::kSkylightBindingCamera, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, g->gbuffer->cameraBuffer())
-        .buffer(shader::kSkylightBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->materialBuffer())
+    vk::DescriptorWriter()
         .buffer(shader::kSkylightBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, g->frame.get())
-        .image(shader::kSkylightBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->accum.view(), VK_IMAGE_LAYOUT_GENERAL)
-        .image(shader::kSkylightBindingEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-               g->scene->environmentView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, g->scene->environmentSampler())
         .image(shader::kSkylightBindingDepthMap, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                depthMapVisibility ? g->depthMap->map().view() : g->placeholder.view(), VK_IMAGE_LAYOUT_GENERAL)
         .update(device, g->set);
-    VkDescriptorSetLayout layouts[] = {g->setLayout.get()};
+    VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
     g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::SkylightPush), cs);
     g->pipeline = vk::makeComputePipeline(device, kSpv_modes_skylight_visibility_comp, g->pipelineLayout.get());
 
@@ -168,20 +152,17 @@ void SkylightMode::iterate(const IterationInfo& info) {
         throw Error("skylight: iterate() before setScene()");
     }
     Gpu& g = *mGpu;
-    const Scene& scene = *mScene;
     if (!g.directions) {
         g.directions = std::make_unique<DirectionSampler>(
             sequenceOf(mSettings.getString(kDirections)), static_cast<std::uint32_t>(info.seed),
             static_cast<std::uint32_t>(mSettings.getInt(kStrata)), g.environment.get(),
             static_cast<float>(mSettings.getDouble(kImportanceOffset)));
     }
-    const std::uint32_t width = g.gbuffer->width(), height = g.gbuffer->height();
-    const glm::vec2 sample = pixelSamplePosition(mIterations);
-    const glm::vec2 jitterNdc = (sample - 0.5f) * glm::vec2(2.0f / width, 2.0f / height);
-    const shader::GpuCamera camera = makeGpuCamera(scene.camera, info.time, g.scene->cameraNear());
+    const std::uint32_t width = g.camera->width(), height = g.camera->height();
+    const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time);
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
-        g.gbuffer->record(cmd, camera, jitterNdc, info.time, &g.timer);
+        g.camera->record(cmd, sample, &g.timer);
     });
     g.timer.collect();
 
@@ -213,12 +194,13 @@ void SkylightMode::iterate(const IterationInfo& info) {
     push.width = width;
     push.height = height;
     push.environmentRotation = g.scene->environmentRotation();
-    push.samplePosition = sample;
+    push.samplePosition = sample.samplePosition;
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
     auto dispatchVisibility = [&](VkCommandBuffer cmd) {
         std::uint32_t scope = g.timer.start(cmd, "visibility");
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 1, &g.set, 0, nullptr);
+        const VkDescriptorSet sets[] = {g.camera->set(), g.set};
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 2, sets, 0, nullptr);
         vkCmdPushConstants(cmd, g.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
         vkCmdDispatch(cmd, vk::groupCount(width, shader::kSkylightGroupSize),
                       vk::groupCount(height, shader::kSkylightGroupSize), 1);
@@ -270,7 +252,11 @@ ImageSet SkylightMode::resolve() {
     Gpu& g = *mGpu;
     ImageSet out;
     out.iterations = mIterations;
-    out.layers.emplace_back("", g.accum.resolve(*mContext, mIterations, &out.nonFiniteSamples));
+    // One sample per pixel and direction: emitted + direct, and their variance.
+    gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations);
+    out.layers = std::move(estimate.layers);
+    out.nonFiniteSamples = estimate.nonFiniteSamples;
+    out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
     out.counters.emplace_back("bundle_fragments_last", double(g.lastStats.fragments));
     out.counters.emplace_back("bundle_rebuilds_last", double(g.lastStats.rebuilds));
     out.counters.emplace_back("bundle_tiles_last", double(g.lastStats.tiles));

@@ -23,7 +23,7 @@
 
 #include "bundle/BundleBuilder.h"
 #include "bundle/DirectionSampler.h"
-#include "gpu/GBufferPass.h"
+#include "gpu/CameraPass.h"
 #include "modes/Mode.h"
 
 #include <memory>

@@ -18,23 +18,24 @@ BL_CONST uint kGBufferAlbedo = 2u;   // rgb albedo (texture applied)
 BL_CONST uint kGBufferEmission = 3u; // rgb emitted radiance toward the camera (front faces only)
 BL_CONST uint kGBufferAttachmentCount = 4u;
 
-// Raster shading pass, set 0.
-BL_CONST uint kRasterBindingGBuffer = 0u;    // storage image[4] (rgba32f), the G-buffer
-BL_CONST uint kRasterBindingCamera = 1u;     // uniform GpuCamera
-BL_CONST uint kRasterBindingMaterials = 2u;  // storage GpuMaterial[]
-BL_CONST uint kRasterBindingLights = 3u;     // storage GpuLight[]
-BL_CONST uint kRasterBindingShadowMaps = 4u; // storage image 2D array (r32f), layers 6 l .. 6 l + 5 = light l
-BL_CONST uint kRasterBindingEnvironment = 5u; // combined sampler, lat-long rgba32f
-BL_CONST uint kRasterBindingAccum = 6u;      // storage image (rgba32f): radiance sum, sample count
+// Camera set: set 0 of every shading pass that runs per camera pixel (core/gpu/CameraPass.h,
+// shaders/gpu/CameraSet.glsl); each mode adds its own set 1.
+BL_CONST uint kCameraSet = 0u;
+BL_CONST uint kCameraBindingGBuffer = 0u;     // storage image[4] (rgba32f), the G-buffer
+BL_CONST uint kCameraBindingCamera = 1u;      // uniform GpuCamera of the last G-buffer record
+BL_CONST uint kCameraBindingMaterials = 2u;   // storage GpuMaterial[]
+BL_CONST uint kCameraBindingEnvironment = 3u; // combined sampler, lat-long rgba32f
+BL_CONST uint kCameraBindingAccum = 4u;       // storage image array (rgba32f), Accumulation.h's slots
 
-// Skylight visibility pass, set 0.
-BL_CONST uint kSkylightBindingGBuffer = 0u;     // storage image[4] (rgba32f), the G-buffer
-BL_CONST uint kSkylightBindingCamera = 1u;      // uniform GpuCamera
-BL_CONST uint kSkylightBindingMaterials = 2u;   // storage GpuMaterial[]
-BL_CONST uint kSkylightBindingFrame = 3u;       // uniform BundleFrame of this direction (and tile)
-BL_CONST uint kSkylightBindingAccum = 4u;       // storage image (rgba32f): radiance sum, sample count
-BL_CONST uint kSkylightBindingEnvironment = 5u; // combined sampler, lat-long rgba32f
-BL_CONST uint kSkylightBindingDepthMap = 6u;    // storage image (r32f): visibility = depth_map
+// Raster shading pass, set 1.
+BL_CONST uint kRasterSet = 1u;
+BL_CONST uint kRasterBindingLights = 0u;     // storage GpuLight[]
+BL_CONST uint kRasterBindingShadowMaps = 1u; // storage image 2D array (r32f), layers 6 l .. 6 l + 5 = light l
+
+// Skylight visibility pass, set 1.
+BL_CONST uint kSkylightSet = 1u;
+BL_CONST uint kSkylightBindingFrame = 0u;    // uniform BundleFrame of this direction (and tile)
+BL_CONST uint kSkylightBindingDepthMap = 1u; // storage image (r32f): visibility = depth_map
 
 BL_NAMESPACE_END
 #endif

@@ -1,7 +1,7 @@
 // Host/device definitions of the raster mode's shading pass.
 #ifndef BL_RASTER_SHARED_H
 #define BL_RASTER_SHARED_H
-#include "../../shared/Prelude.h"
+#include "../../shared/Accumulation.h"
 
 BL_NAMESPACE_BEGIN
 
@@ -16,11 +16,9 @@ struct RasterPush {
 };
 BL_STATIC_ASSERT(sizeof(RasterPush) == 32, "RasterPush layout");
 
-// Relative tolerance of the shadow test (receiver-plane depth against the stored distance). The
-// receiver's own distance is reproduced to float precision (~1e-6) for planar receivers; 1e-3
-// also covers curved receivers over a 4x4-texel PCF footprint, and, being relative, holds at any
-// scene scale.
-BL_CONST float kShadowRelativeBias = 1e-3f;
+// Layers the raster mode writes: visible emitters and the environment (1 segment), direct light
+// from point and spot lights (2 segments).
+BL_CONST uint kRasterAccumLayers = (1u << kPathEmitted) | (1u << kPathDirect);
 
 BL_CONST uint kRasterGroupSize = 8u;
 

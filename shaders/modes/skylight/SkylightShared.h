@@ -1,7 +1,7 @@
 // Host/device definitions of the skylight mode's visibility pass.
 #ifndef BL_SKYLIGHT_SHARED_H
 #define BL_SKYLIGHT_SHARED_H
-#include "../../shared/Prelude.h"
+#include "../../shared/Accumulation.h"
 
 BL_NAMESPACE_BEGIN
 
@@ -29,12 +29,10 @@ BL_CONST uint kSkylightVisibilityDepthMap = 1u;
 
 BL_CONST uint kSkylightGroupSize = 8u;
 
-// Own-surface tolerance across the pixel a point falls in: the point's surface, sampled at the
-// pixel centre up to half a pixel diagonal (0.71 px) away, differs in depth by up to that times
-// tan(incidence); 1 px * tan covers it with margin. Capped: beyond ~85 degrees the cosine weight
-// makes the term negligible anyway.
-BL_CONST float kSkylightOwnSurfacePixels = 1.0f;
-BL_CONST float kSkylightMaxTangent = 12.0f;
+// Layers the skylight mode writes: visible emitters and the environment behind the scene
+// (1 segment), direct light from the environment (2 segments).
+BL_CONST uint kSkylightAccumLayers = (1u << kPathEmitted) | (1u << kPathDirect);
+
 
 BL_NAMESPACE_END
 #endif

@@ -1,0 +1,69 @@
+// Visibility from cube shadow maps (core/gpu/ShadowCubePass.h): 4x4 PCF with a receiver-plane depth
+// test. Define BL_SHADOW_SET and BL_SHADOW_BINDING (where the maps are bound) before including.
+// A cube occupies six consecutive layers (CubeFaces.h order) starting at `firstLayer`: 6 l for
+// light l, or any cube ShadowCubePass::record(cmd, position, cube, ...) rendered (e.g. a VPL).
+#ifndef BL_GPU_SHADOW_CUBE_LOOKUP_GLSL
+#define BL_GPU_SHADOW_CUBE_LOOKUP_GLSL
+#include "shared/CubeFaces.h"
+
+layout(set = BL_SHADOW_SET, binding = BL_SHADOW_BINDING, r32f) uniform readonly image2DArray blShadowMaps;
+
+// Relative tolerance of the shadow test (receiver-plane depth against the stored distance). The
+// receiver's own distance is reproduced to float precision (~1e-6) for planar receivers; 1e-3
+// also covers curved receivers over a 4x4-texel PCF footprint, and, being relative, holds at any
+// scene scale.
+const float kShadowRelativeBias = 1e-3;
+// A tap whose centre ray meets the receiver plane at a cosine below this (in magnitude) runs
+// parallel to it: it cannot hit the receiver, so it counts as lit.
+const float kShadowParallelCosine = 1e-6;
+const int kShadowPcfTaps = 4; // per side
+const uint kShadowCubeFaces = 6u; // layers per cube
+
+// Projects direction d (from the cube's centre) onto its cube face: continuous texel coordinates.
+vec2 blShadowFaceTexel(vec3 d, uint face, float resolution) {
+    vec3 r, u, f;
+    blCubeFaceBasis(face, r, u, f);
+    float z = dot(d, f);
+    vec2 xy = vec2(dot(d, r), dot(d, u)) / z;
+    return vec2(xy.x + 1.0, 1.0 - xy.y) * (0.5 * resolution);
+}
+
+// Fraction of the PCF taps that see the cube's centre from receiver point p (relative to the
+// centre) with normal n. Each tap compares the stored distance along its texel's centre ray with
+// the distance at which that same ray meets the receiver's tangent plane, so a planar receiver
+// never shadows itself and no scale-dependent bias is needed.
+float blShadowVisibility(uint firstLayer, uint resolution, vec3 p, vec3 n) {
+    const float res = float(resolution);
+    uint face = blCubeFaceOf(p);
+    vec3 r, u, f;
+    blCubeFaceBasis(face, r, u, f);
+    vec2 st = blShadowFaceTexel(p, face, res);
+    const float centre = 0.5 * float(kShadowPcfTaps - 1);
+    float lit = 0.0;
+    for (int j = 0; j < kShadowPcfTaps; ++j) {
+        for (int i = 0; i < kShadowPcfTaps; ++i) {
+            vec2 tap = st + vec2(float(i) - centre, float(j) - centre);
+            // Taps beyond the face continue on the neighbouring face.
+            vec2 xy = vec2(tap.x / res * 2.0 - 1.0, 1.0 - tap.y / res * 2.0);
+            vec3 dir = f + xy.x * r + xy.y * u;
+            uint tapFace = blCubeFaceOf(dir);
+            vec2 tapSt = tapFace == face ? tap : blShadowFaceTexel(dir, tapFace, res);
+            ivec2 texel = clamp(ivec2(floor(tapSt)), ivec2(0), ivec2(int(resolution) - 1));
+            vec3 tr, tu, tf;
+            blCubeFaceBasis(tapFace, tr, tu, tf);
+            vec2 c = (vec2(texel) + 0.5) / res * 2.0 - 1.0;
+            vec3 centreRay = normalize(tf + c.x * tr - c.y * tu);
+            float denom = dot(centreRay, n);
+            if (denom >= -kShadowParallelCosine) {
+                lit += 1.0; // the tap's ray runs parallel to or behind the receiver plane
+                continue;
+            }
+            float receiver = dot(p, n) / denom;
+            float stored = imageLoad(blShadowMaps, ivec3(texel, int(firstLayer + tapFace))).r;
+            lit += stored >= receiver * (1.0 - kShadowRelativeBias) ? 1.0 : 0.0;
+        }
+    }
+    return lit / float(kShadowPcfTaps * kShadowPcfTaps);
+}
+
+#endif
