@@ -4,7 +4,6 @@
 
 #include <bundle/build.vert.spv.h>
 #include <bundle/depth_map.frag.spv.h>
-#include <cstring>
 #include <limits>
 
 namespace bl {
@@ -20,7 +19,7 @@ DepthMapPass::DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, s
     mMap = vk::GpuImage(ctx, {resolution, resolution, 1, kMapFormat,
                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT});
     mDepth = vk::GpuImage(ctx, {resolution, resolution, 1, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
-    mFrame = vk::Buffer(ctx, sizeof(shader::BundleFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
+    mFrame = gpu::RecordedUniform<shader::BundleFrame>(ctx);
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     mSetLayout = vk::makeDescriptorSetLayout(device, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, stages}});
     mPool = vk::DescriptorPool(device, 1, 2);
@@ -42,8 +41,8 @@ DepthMapPass::DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, s
 }
 
 void DepthMapPass::record(VkCommandBuffer cmd, const shader::BundleFrame& frame, double time, vk::GpuTimer* timer) {
-    std::memcpy(mFrame.data(), &frame, sizeof(frame));
     std::uint32_t scope = timer ? timer->start(cmd, "depth map") : 0;
+    mFrame.record(cmd, frame);
     vk::transitionImage(cmd, mMap.get(), vk::toColorAttachment());
     vk::transitionImage(cmd, mDepth.get(), vk::toDepthAttachment());
     vk::RenderTargets targets;

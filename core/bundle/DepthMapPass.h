@@ -6,6 +6,7 @@
 #pragma once
 
 #include "gpu/GpuScene.h"
+#include "gpu/RecordedUniform.h"
 #include "vk/Buffer.h"
 #include "vk/Descriptors.h"
 #include "vk/GpuTimer.h"
@@ -19,7 +20,8 @@ class DepthMapPass {
 public:
     DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, std::uint32_t resolution);
 
-    // Renders the map for `frame` (width and height at most the resolution).
+    // Renders the map for `frame` (width and height at most the resolution). The frame is written
+    // in the command stream: several records in one command buffer each use their own.
     void record(VkCommandBuffer cmd, const shader::BundleFrame& frame, double time, vk::GpuTimer* timer);
 
     const vk::GpuImage& map() const { return mMap; }
@@ -30,7 +32,7 @@ private:
     std::uint32_t mResolution;
     vk::GpuImage mMap;
     vk::GpuImage mDepth;
-    vk::Buffer mFrame;
+    gpu::RecordedUniform<shader::BundleFrame> mFrame;
     vk::DescriptorSetLayout mSetLayout;
     vk::DescriptorPool mPool;
     VkDescriptorSet mSet = VK_NULL_HANDLE;
