@@ -1,5 +1,6 @@
 #include "gpu/ShadowCubePass.h"
 
+#include "base/Error.h"
 #include "vk/Commands.h"
 
 #include <gpu/shadow_cube.frag.spv.h>
@@ -11,15 +12,23 @@ namespace bl::gpu {
 namespace {
 constexpr VkFormat kDistanceFormat = VK_FORMAT_R32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-constexpr std::uint32_t kFaces = 6;
 } // namespace
 
 ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution)
-    : mScene(&scene), mResolution(resolution), mLightCount(static_cast<std::uint32_t>(scene.lights().size())) {
+    : ShadowCubePass(ctx, scene, resolution, static_cast<std::uint32_t>(scene.lights().size())) {}
+
+ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution,
+                               std::uint32_t cubes)
+    : mScene(&scene), mResolution(resolution), mLightCount(static_cast<std::uint32_t>(scene.lights().size())),
+      mCubes(cubes) {
+    if (mCubes < mLightCount) {
+        throw Error("shadow cubes: " + std::to_string(mCubes) + " cube(s) cannot hold the scene's " +
+                    std::to_string(mLightCount) + " light(s)");
+    }
     VkDevice device = ctx.device();
-    // Without lights a 1x1 placeholder keeps the shading pass's descriptors valid.
-    const std::uint32_t side = mLightCount ? resolution : 1;
-    mMaps = vk::GpuImage(ctx, {side, side, kFaces * std::max(mLightCount, 1u), kDistanceFormat,
+    // Without cubes a 1x1 placeholder keeps the shading pass's descriptors valid.
+    const std::uint32_t side = mCubes ? resolution : 1;
+    mMaps = vk::GpuImage(ctx, {side, side, kFaces * std::max(mCubes, 1u), kDistanceFormat,
                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, true});
     mDepth = vk::GpuImage(ctx, {side, side, 1, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
     mPipelineLayout = vk::makePipelineLayout(device, {}, sizeof(shader::ShadowPush),
@@ -33,45 +42,75 @@ ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, st
     desc.depthFormat = kDepthFormat;
     desc.layout = mPipelineLayout.get();
     mPipeline = vk::makeGraphicsPipeline(device, desc);
+
+    // Every cube starts as "nothing in the way" (+inf) in GENERAL, so a cube never rendered reads
+    // as unshadowed, and each record changes the layout of its own layers only.
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        vk::transitionImage(cmd, mMaps.get(), vk::ImageTransition{});
+        const VkClearColorValue nothing{{std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f}};
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
+        vkCmdClearColorImage(cmd, mMaps.get(), VK_IMAGE_LAYOUT_GENERAL, &nothing, 1, &all);
+    });
 }
 
 void ShadowCubePass::record(VkCommandBuffer cmd, double time, vk::GpuTimer* timer) {
     if (mLightCount == 0) {
-        vk::ImageTransition placeholder = vk::toColorAttachment();
-        placeholder.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-        vk::transitionImage(cmd, mMaps.get(), placeholder);
-        return;
+        return; // the cleared placeholder stays valid
     }
     std::uint32_t scope = timer ? timer->start(cmd, "shadow maps") : 0;
-    vk::transitionImage(cmd, mMaps.get(), vk::toColorAttachment());
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipeline.get());
-    mScene->bindGeometry(cmd);
     for (std::uint32_t light = 0; light < mLightCount; ++light) {
-        for (std::uint32_t face = 0; face < kFaces; ++face) {
-            vk::transitionImage(cmd, mDepth.get(), vk::toDepthAttachment());
-            vk::RenderTargets targets;
-            targets.colors = {mMaps.layerView(kFaces * light + face)};
-            targets.clearColor = {{std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f}};
-            targets.depth = mDepth.view();
-            targets.extent = {mResolution, mResolution};
-            vk::beginRendering(cmd, targets);
-            for (const GpuDraw& d : mScene->draws()) {
-                shader::ShadowPush push{};
-                push.model = mScene->modelMatrix(d.mesh, time);
-                push.lightPosition = mScene->scene().lights[light].at(time).position;
-                push.nearPlane = mScene->shadowNear();
-                push.face = face;
-                vkCmdPushConstants(cmd, mPipelineLayout.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                                   0, sizeof(push), &push);
-                vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
-            }
-            vkCmdEndRendering(cmd);
-        }
+        recordCube(cmd, mScene->lights()[light].position, light, time);
     }
-    vk::transitionImage(cmd, mMaps.get(), vk::colorAttachmentToGeneral());
     if (timer) {
         timer->stop(cmd, scope);
     }
+}
+
+void ShadowCubePass::record(VkCommandBuffer cmd, const glm::vec3& position, std::uint32_t cube, double time,
+                            vk::GpuTimer* timer) {
+    if (cube >= mCubes) {
+        throw Error("shadow cubes: cube " + std::to_string(cube) + " requested, the image holds " +
+                    std::to_string(mCubes));
+    }
+    std::uint32_t scope = timer ? timer->start(cmd, "shadow cube") : 0;
+    recordCube(cmd, position, cube, time);
+    if (timer) {
+        timer->stop(cmd, scope);
+    }
+}
+
+void ShadowCubePass::recordCube(VkCommandBuffer cmd, const glm::vec3& position, std::uint32_t cube, double time) {
+    // Only this cube's layers change layout (its old maps are discarded); the others keep theirs.
+    vk::ImageTransition toAttachment = vk::toColorAttachment();
+    toAttachment.baseLayer = kFaces * cube;
+    toAttachment.layerCount = kFaces;
+    vk::transitionImage(cmd, mMaps.get(), toAttachment);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipeline.get());
+    mScene->bindGeometry(cmd);
+    for (std::uint32_t face = 0; face < kFaces; ++face) {
+        vk::transitionImage(cmd, mDepth.get(), vk::toDepthAttachment());
+        vk::RenderTargets targets;
+        targets.colors = {mMaps.layerView(kFaces * cube + face)};
+        targets.clearColor = {{std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f}};
+        targets.depth = mDepth.view();
+        targets.extent = {mResolution, mResolution};
+        vk::beginRendering(cmd, targets);
+        for (const GpuDraw& d : mScene->draws()) {
+            shader::ShadowPush push{};
+            push.model = mScene->modelMatrix(d.mesh, time);
+            push.lightPosition = position;
+            push.nearPlane = mScene->shadowNear();
+            push.face = face;
+            vkCmdPushConstants(cmd, mPipelineLayout.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                               sizeof(push), &push);
+            vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
+        }
+        vkCmdEndRendering(cmd);
+    }
+    vk::ImageTransition toGeneral = vk::colorAttachmentToGeneral();
+    toGeneral.baseLayer = kFaces * cube;
+    toGeneral.layerCount = kFaces;
+    vk::transitionImage(cmd, mMaps.get(), toGeneral);
 }
 
 } // namespace bl::gpu

@@ -1,7 +1,9 @@
-// Omnidirectional shadow maps for every point and spot light: six faces per light, in one r32f
-// 2D-array image (layers 6 l .. 6 l + 5), each texel the distance from the light to the nearest
-// surface along its centre ray (+inf where nothing). Face bases are CubeFaces.h's, shared with the
-// lookups. After record() the image is in VK_IMAGE_LAYOUT_GENERAL for imageLoad.
+// Omnidirectional shadow maps: six faces per cube, in one r32f 2D-array image (layers 6 c .. 6 c + 5
+// = cube c), each texel the distance from the cube's centre to the nearest surface along its centre
+// ray (+inf where nothing). Cubes 0 .. L-1 belong to the scene's point and spot lights (record with
+// a time); any cube can instead be rendered from an arbitrary point (record with a position), e.g.
+// a virtual point light. Face bases are CubeFaces.h's, shared with the lookups
+// (shaders/gpu/ShadowCubeLookup.glsl). After a record the image is in VK_IMAGE_LAYOUT_GENERAL.
 #pragma once
 
 #include "gpu/GpuScene.h"
@@ -12,18 +14,32 @@ namespace bl::gpu {
 
 class ShadowCubePass {
 public:
+    // `cubes`: how many cubes the image holds; at least the scene's light count for the
+    // per-light record.
     ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution);
+    ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution, std::uint32_t cubes);
 
+    // Renders every light's cube (cube l = light l) at scene `time`.
     void record(VkCommandBuffer cmd, double time, vk::GpuTimer* timer);
+    // Renders cube `cube` from `position` (world space) with the scene at `time`; the other cubes
+    // keep their contents.
+    void record(VkCommandBuffer cmd, const glm::vec3& position, std::uint32_t cube, double time, vk::GpuTimer* timer);
 
     const vk::GpuImage& maps() const { return mMaps; }
     std::uint32_t resolution() const { return mResolution; }
     std::uint32_t lightCount() const { return mLightCount; }
+    std::uint32_t cubeCount() const { return mCubes; }
+
+    static constexpr std::uint32_t kFaces = 6;
 
 private:
+    // Renders the six faces of `cube` from `position`, leaving its layers in GENERAL.
+    void recordCube(VkCommandBuffer cmd, const glm::vec3& position, std::uint32_t cube, double time);
+
     const GpuScene* mScene;
     std::uint32_t mResolution;
     std::uint32_t mLightCount;
+    std::uint32_t mCubes;
     vk::GpuImage mMaps;
     vk::GpuImage mDepth;
     vk::PipelineLayout mPipelineLayout;

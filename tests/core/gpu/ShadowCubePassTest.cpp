@@ -1,0 +1,72 @@
+// Shadow cubes rendered from the scene's lights and from arbitrary points (virtual point lights).
+#include "base/Error.h"
+#include "gpu/ShadowCubePass.h"
+#include "scene/SceneLoader.h"
+#include "support/TestFiles.h"
+#include "support/VulkanTest.h"
+
+#include <shared/CubeFaces.h>
+
+using namespace bl;
+
+namespace {
+
+constexpr std::uint32_t kResolution = 16; // texels per face side
+constexpr std::uint32_t kDownFace = 3;    // CubeFaces.h: -y
+// Stored distances come from interpolated world positions at texel centres: float precision.
+constexpr float kRelativeTolerance = 1e-5f;
+
+class ShadowCubePassTest : public test::VulkanTest {};
+
+// Distance from a point at `height` over the plane y = 0 along the centre ray of texel (i, j) of
+// the -y face.
+float distanceToFloor(float height, std::uint32_t i, std::uint32_t j) {
+    glm::vec3 r, u, f;
+    shader::blCubeFaceBasis(kDownFace, r, u, f);
+    const glm::vec2 c = (glm::vec2(i, j) + 0.5f) / float(kResolution) * 2.0f - 1.0f;
+    const glm::vec3 ray = glm::normalize(f + c.x * r - c.y * u);
+    return height / -ray.y;
+}
+
+// Largest relative error of cube `cube`'s -y face against a floor `height` below its centre.
+float worstFloorError(const vk::Context& ctx, const gpu::ShadowCubePass& pass, std::uint32_t cube, float height) {
+    std::vector<std::byte> raw = pass.maps().download(ctx, VK_IMAGE_LAYOUT_GENERAL, 6 * cube + kDownFace);
+    const auto* stored = reinterpret_cast<const float*>(raw.data());
+    float worst = 0.0f;
+    for (std::uint32_t j = 0; j < kResolution; ++j) {
+        for (std::uint32_t i = 0; i < kResolution; ++i) {
+            const float expected = distanceToFloor(height, i, j);
+            worst = std::max(worst, std::abs(stored[j * kResolution + i] - expected) / expected);
+        }
+    }
+    return worst;
+}
+
+} // namespace
+
+// The analytic scene's light hangs 1 over a 10 x 10 floor; a virtual point 0.5 over it goes into
+// cube 1. Each cube's downward face must hold its own distances, and rendering cube 1 must leave
+// the light's cube 0 as it was.
+TEST_F(ShadowCubePassTest, CubeFromAnArbitraryPointIntoAChosenLayer) {
+    Scene scene = loadScene(test::sourcePath("data/analytic/point-over-plane.toml"));
+    gpu::GpuScene gpuScene(ctx(), scene);
+    gpu::ShadowCubePass pass(ctx(), gpuScene, kResolution, 2);
+    ASSERT_EQ(pass.lightCount(), 1u);
+    const float lightHeight = scene.lights[0].position.y;
+    const glm::vec3 virtualLight(0.3f, 0.5f, -0.2f);
+
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+        pass.record(cmd, 0.0, nullptr);
+        pass.record(cmd, virtualLight, 1, 0.0, nullptr);
+    });
+    EXPECT_LT(worstFloorError(ctx(), pass, 0, lightHeight), kRelativeTolerance);
+    EXPECT_LT(worstFloorError(ctx(), pass, 1, virtualLight.y), kRelativeTolerance);
+    // The test can fail: the light's cube does not hold the virtual point's distances.
+    EXPECT_GT(worstFloorError(ctx(), pass, 0, virtualLight.y), 0.5f);
+}
+
+TEST_F(ShadowCubePassTest, TooFewCubesForTheLightsIsAClearError) {
+    Scene scene = loadScene(test::sourcePath("data/analytic/point-over-plane.toml"));
+    gpu::GpuScene gpuScene(ctx(), scene);
+    EXPECT_THROW(gpu::ShadowCubePass(ctx(), gpuScene, kResolution, 0), Error);
+}
