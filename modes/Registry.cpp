@@ -1,6 +1,7 @@
 #include "modes/Registry.h"
 
 #include "base/Error.h"
+#include "modes/multibounce/MultibounceMode.h"
 #include "modes/raster/RasterMode.h"
 #include "modes/reference/ReferenceMode.h"
 #include "modes/skylight/SkylightMode.h"
@@ -9,6 +10,8 @@ namespace bl {
 
 namespace {
 const ModeEntry kModes[] = {
+    {"multibounce", "global illumination of any path length through K resident omnidirectional bundles [TO12 section 7]",
+     true, &MultibounceMode::parameters, &MultibounceMode::create},
     {"raster", "rasterized direct light from point/spot lights (cube shadow maps), emitters, environment",
      true, &RasterMode::parameters, &RasterMode::create},
     {"reference", "CPU path tracer (Embree): ground truth, layers by path length, per-pixel variance", false,

@@ -1,0 +1,287 @@
+#include "modes/multibounce/MultibounceMode.h"
+
+#include "base/Error.h"
+#include "bundle/BundleFrame.h"
+#include "bundle/BundlePool.h"
+#include "bundle/DirectionSampler.h"
+#include "gpu/CameraPass.h"
+#include "gpu/ShadowCubePass.h"
+#include "scene/Scene.h"
+#include "vk/Commands.h"
+#include "vk/Descriptors.h"
+
+#include <modes/multibounce/MultibounceShared.h>
+#include <modes/multibounce/paths.comp.spv.h>
+
+namespace bl {
+
+namespace {
+constexpr double kMiB = 1024.0 * 1024.0;
+
+DirectionSequence sequenceOf(const std::string& name) {
+    return name == "random" ? DirectionSequence::Random : DirectionSequence::Halton;
+}
+} // namespace
+
+std::vector<ParamSpec> MultibounceMode::parameters() {
+    return {
+        {kBundleCount, std::int64_t{64}, "bundles", "resident omnidirectional bundles per iteration (K); paths pick one per bounce",
+         1, 4096, {}},
+        {kPathsPerPixel, std::int64_t{4}, "paths",
+         "camera paths per pixel through each iteration's bundles (they share its K directions)", 1, 1024, {}},
+        {kBundleResolution, std::int64_t{128}, "pixels",
+         "side of each bundle; the next vertex is found up to half a pixel diagonal off the exact ray", 8, 4096, {}},
+        {kDirections, std::string("halton"), "", "bundle directions, uniform on the sphere", 0, 0, {"halton", "random"}},
+        {kMaxSegments, std::int64_t{64}, "segments", "at most this many segments per path (1 emitters, 2 direct light)", 1,
+         1024, {}},
+        {kRrSegments, std::int64_t{5}, "segments", "Russian roulette from this path length on", 1, 1024, {}},
+        {kShadowResolution, std::int64_t{512}, "texels", "side of each shadow cube face (point and spot lights)", 16, 8192,
+         {}},
+        {kMemoryCap, std::int64_t{2048}, "MiB", "node storage limit of the bundle pool; an iteration that needs more is refused",
+         1, 1 << 20, {}},
+    };
+}
+
+std::unique_ptr<Mode> MultibounceMode::create(const Settings& settings) {
+    return std::make_unique<MultibounceMode>(settings);
+}
+
+MultibounceMode::MultibounceMode(const Settings& settings) : mSettings(settings) {}
+
+struct MultibounceMode::Gpu {
+    std::unique_ptr<gpu::GpuScene> scene;
+    std::unique_ptr<gpu::CameraPass> camera;
+    std::unique_ptr<gpu::ShadowCubePass> shadows;
+    std::unique_ptr<BundlePool> pool;
+    std::unique_ptr<DirectionSampler> directions;
+    vk::Buffer emitters;
+    std::uint32_t emitterCount = 0;
+    vk::DescriptorSetLayout setLayout;
+    vk::DescriptorPool descriptorPool;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    vk::PipelineLayout pipelineLayout;
+    vk::Pipeline pipeline;
+    vk::GpuTimer timer;
+    Bounds bounds;
+    std::uint64_t nodesLast = 0; // nodes the last iteration's K bundles held
+    std::uint32_t rebuilds = 0;  // iterations redone after the pool grew
+};
+
+MultibounceMode::~MultibounceMode() = default;
+
+std::vector<PlannedPass> MultibounceMode::plan(const Scene& scene) const {
+    const SceneFeatures f = scene.features();
+    const auto k = std::to_string(mSettings.getInt(kBundleCount));
+    const auto r = std::to_string(mSettings.getInt(kBundleResolution));
+    std::vector<PlannedPass> p;
+    p.push_back({"bundle build", true, k + " bundles of " + r + "^2 pixels over " + std::to_string(f.triangles) +
+                                           " triangles, with hit payload, every iteration"});
+    p.push_back({"bundle sort", true, "depth order per pixel: the next vertex is one step from the point's depth"});
+    if (f.shadowCastingLights() == 0) {
+        p.push_back({"shadow maps", false, "no point or spot lights"});
+    } else {
+        p.push_back({"shadow maps", true,
+                     std::to_string(f.shadowCastingLights()) + " light(s) x 6 faces at every path vertex; " +
+                         (f.animated ? "every iteration (animated scene)" : "once (static scene)")});
+    }
+    p.push_back({"gbuffer", true, "the camera's first vertex, jittered every iteration"});
+    std::string paths = "bounces through the bundles";
+    paths += f.emissiveMeshes ? "; emitters hit (front faces)" : "; no emitters to hit";
+    paths += f.environment ? "; environment for escaping paths" : "; no environment: escaping paths end";
+    if (f.textured) {
+        paths += "; textures only at the first vertex (material albedo beyond)";
+    }
+    p.push_back({"paths", true, paths});
+    return p;
+}
+
+void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
+    if (!ctx) {
+        throw Error("mode multibounce needs a Vulkan device");
+    }
+    mScene = &scene;
+    mContext = ctx;
+    mIterations = 0;
+    mShadowTime.reset();
+    const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
+    const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
+    const auto shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
+    ctx->requireDeviceMemory(VkDeviceSize(width) * height * gpu::CameraPass::bytesPerPixel(shader::kMultibounceAccumLayers) +
+                                 shadowSide * shadowSide * 4 * (6 * scene.lights.size() + 1),
+                             "multibounce at " + std::to_string(width) + "x" + std::to_string(height));
+    auto g = std::make_unique<Gpu>();
+    g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
+    g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kMultibounceAccumLayers);
+    g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
+    g->bounds = scene.bounds();
+
+    const auto slots = static_cast<std::uint32_t>(mSettings.getInt(kBundleCount));
+    const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+    BundlePoolOptions options;
+    options.slots = slots;
+    options.slotPixels = resolution * resolution;
+    options.payload = BundlePayload::Hit;
+    options.sortable = true;
+    options.memoryCapBytes = static_cast<std::uint64_t>(mSettings.getInt(kMemoryCap)) << 20;
+    try {
+        g->pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
+    } catch (const Error& e) {
+        throw Error("multibounce: " + std::to_string(slots) + " bundles of " + std::to_string(resolution) + "^2: " +
+                    e.what() + " (lower bundle_count or bundle_resolution, or raise memory_cap_mib)");
+    }
+    // A scope per build and per sort, plus the camera passes.
+    constexpr std::uint32_t kOtherScopes = 8;
+    g->timer = vk::GpuTimer(*ctx, 2 * slots + kOtherScopes);
+
+    std::vector<shader::MultibounceEmitter> emitters;
+    for (const gpu::GpuDraw& d : g->scene->draws()) {
+        emitters.push_back({scene.meshes[d.mesh].emission, d.firstIndex / 3});
+    }
+    g->emitterCount = static_cast<std::uint32_t>(emitters.size());
+    g->emitters = vk::makeBuffer(*ctx, std::span<const shader::MultibounceEmitter>(emitters),
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+
+    VkDevice device = ctx->device();
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    g->setLayout = vk::makeDescriptorSetLayout(
+        device, {{shader::kMultibounceBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kMultibounceBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
+                 {shader::kMultibounceBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
+    g->descriptorPool = vk::DescriptorPool(device, 1, 2);
+    g->set = g->descriptorPool.allocate(g->setLayout.get());
+    vk::DescriptorWriter()
+        .buffer(shader::kMultibounceBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
+        .image(shader::kMultibounceBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->shadows->maps().view(),
+               VK_IMAGE_LAYOUT_GENERAL)
+        .buffer(shader::kMultibounceBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->emitters.get())
+        .update(device, g->set);
+    VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
+    g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::MultibouncePush), cs);
+    g->pipeline = vk::makeComputePipeline(device, kSpv_modes_multibounce_paths_comp, g->pipelineLayout.get());
+    mGpu = std::move(g);
+}
+
+// Builds and sorts the K bundles of this iteration into the pool; grows the pool and builds
+// again when they did not fit, and refuses what the limits cannot hold.
+void MultibounceMode::buildBundles(const IterationInfo& info) {
+    Gpu& g = *mGpu;
+    const std::uint32_t slots = g.pool->slots();
+    const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+    std::vector<shader::BundleFrame> frames(slots);
+    for (std::uint32_t k = 0; k < slots; ++k) {
+        const BundleDirection dir = g.directions->sample(mIterations * slots + k);
+        frames[k] = bundleFrameForSphere(dir.omega, dir.rotation, g.bounds.center(), g.bounds.radius(), resolution);
+    }
+    for (;;) {
+        mContext->submitAndWait([&](VkCommandBuffer cmd) {
+            g.timer.begin(cmd);
+            g.pool->recordReset(cmd);
+            for (std::uint32_t k = 0; k < slots; ++k) {
+                g.pool->recordBuild(cmd, k, frames[k], BundleGeometry::triangles(info.time), &g.timer);
+            }
+            for (std::uint32_t k = 0; k < slots; ++k) {
+                g.pool->recordSort(cmd, k, &g.timer);
+            }
+        });
+        g.timer.collect();
+        const BundlePoolStatus status = g.pool->status();
+        if (!status.overflowed()) {
+            g.nodesLast = status.requested;
+            return;
+        }
+        if (!g.pool->grow(status)) {
+            const double perNode = double(g.pool->bytesPerNode());
+            const double fits = double(slots) * double(g.pool->maxNodes()) / double(status.requested);
+            throw Error("multibounce: " + std::to_string(slots) + " bundles of " + std::to_string(resolution) +
+                        "^2 need " + std::to_string(status.requested) + " nodes (" +
+                        std::to_string(status.requested * perNode / kMiB) + " MiB), the pool holds at most " +
+                        std::to_string(g.pool->maxNodes()) + " (" + std::to_string(g.pool->maxNodes() * perNode / kMiB) +
+                        " MiB: the device's limits or memory_cap_mib); about " + std::to_string(std::uint64_t(fits)) +
+                        " bundles fit at this resolution");
+        }
+        ++g.rebuilds;
+    }
+}
+
+void MultibounceMode::iterate(const IterationInfo& info) {
+    if (!mGpu) {
+        throw Error("multibounce: iterate() before setScene()");
+    }
+    Gpu& g = *mGpu;
+    if (!g.directions) {
+        // The seed decorrelates runs; directions are reproducible from (settings, seed).
+        g.directions = std::make_unique<DirectionSampler>(sequenceOf(mSettings.getString(kDirections)),
+                                                          static_cast<std::uint32_t>(info.seed));
+    }
+    buildBundles(info);
+
+    const std::uint32_t width = g.camera->width(), height = g.camera->height();
+    const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time);
+    // Static scenes need their shadow maps once; animated ones whenever the time changes.
+    const bool renderShadows = g.shadows->lightCount() > 0 &&
+                               (!mShadowTime || (g.scene->features().animated && *mShadowTime != info.time));
+    if (renderShadows) {
+        g.scene->setLightTime(*mContext, info.time); // keyframed lights move with their shadows
+    }
+    shader::MultibouncePush push{};
+    push.pool = g.pool->view();
+    push.width = width;
+    push.height = height;
+    push.seed = static_cast<std::uint32_t>(info.seed);
+    push.iteration = mIterations;
+    push.lightCount = g.shadows->lightCount();
+    push.shadowResolution = g.shadows->resolution();
+    push.emitterCount = g.emitterCount;
+    push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
+    push.environmentRotation = g.scene->environmentRotation();
+    push.maxSegments = static_cast<std::uint32_t>(mSettings.getInt(kMaxSegments));
+    push.rrSegments = static_cast<std::uint32_t>(mSettings.getInt(kRrSegments));
+    // Uniform directions: every direction of a hemisphere has the same density (the axis is arbitrary).
+    push.hemispherePdf = g.directions->hemispherePdf(glm::vec3(0.0f, 0.0f, 1.0f));
+    push.samplePosition = sample.samplePosition;
+    push.pathsPerPixel = pathsPerPixel();
+    mContext->submitAndWait([&](VkCommandBuffer cmd) {
+        g.timer.begin(cmd);
+        if (renderShadows) {
+            g.shadows->record(cmd, info.time, &g.timer);
+        }
+        g.camera->record(cmd, sample, &g.timer);
+        const std::uint32_t scope = g.timer.start(cmd, "paths");
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());
+        const VkDescriptorSet sets[] = {g.camera->set(), g.set};
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 2, sets, 0, nullptr);
+        vkCmdPushConstants(cmd, g.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdDispatch(cmd, vk::groupCount(width, shader::kMultibounceGroupSize),
+                      vk::groupCount(height, shader::kMultibounceGroupSize), 1);
+        g.timer.stop(cmd, scope);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    });
+    g.timer.collect();
+    if (renderShadows) {
+        mShadowTime = info.time;
+    }
+    ++mIterations;
+}
+
+ImageSet MultibounceMode::resolve() {
+    if (!mGpu) {
+        throw Error("multibounce: resolve() before setScene()");
+    }
+    Gpu& g = *mGpu;
+    ImageSet out;
+    out.iterations = mIterations; // each added paths_per_pixel samples per pixel
+    gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations * pathsPerPixel());
+    out.layers = std::move(estimate.layers);
+    out.nonFiniteSamples = estimate.nonFiniteSamples;
+    out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
+    out.counters.emplace_back("bundle_nodes_last", double(g.nodesLast));
+    out.counters.emplace_back("bundle_pool_capacity", double(g.pool->capacity()));
+    out.counters.emplace_back("bundle_pool_max_nodes", double(g.pool->maxNodes()));
+    out.counters.emplace_back("bundle_rebuilds", double(g.rebuilds));
+    return out;
+}
+
+PassTimes MultibounceMode::timings() const { return mGpu ? mGpu->timer.totals() : PassTimes{}; }
+
+} // namespace bl

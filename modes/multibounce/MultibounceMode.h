@@ -1,0 +1,84 @@
+// Mode `multibounce`: global illumination of any path length by reusing K resident omnidirectional
+// global ray-bundles ([TO12] section 7; EQUATIONS.md sections 1 and 3; papers/tokuyoshi-ogaki-2012-poster.md).
+//
+// One iteration = K bundles + paths_per_pixel camera paths per pixel. The K bundles are built first, all kept
+// in one BundlePool with the hit payload and depth-sorted lists, each frame covering the scene's
+// bounding sphere along a direction omega_k uniform on the sphere (Halton or independent random,
+// randomly rotated about omega_k). Then every camera path starts at the G-buffer's visible point
+// and, at each vertex x with normal n, picks a bundle k uniformly, uses d = omega_k or -omega_k
+// (whichever lies on n's side), and finds the next vertex as the fragment after x's depth along d
+// in x's bundle pixel. For uniform directions the density of d on the hemisphere is
+//   p_r(d) = q(d) + q(-d) = 1 / (2 pi),
+// so the path weight gains f(x, d, wo) |n.d| / p_r(d) per bounce. At each vertex it adds the
+// emission of an emitter's front face it arrived at, direct light from point and spot lights
+// (cube shadow maps, 4x4 PCF), and the environment when the path escapes; Russian roulette after
+// `rr_segments` segments. Contributions go to the reference's path-length layers.
+//
+// Bias: the next vertex is found along the bundle pixel's centre ray, up to half a pixel diagonal
+// beside the exact ray from x; it vanishes as bundle_resolution grows (measured in the README).
+//
+// Memory: K bundles of R^2 pixels each need heads (4 bytes per pixel per bundle) and nodes (36
+// bytes: node, hit payload, predecessor) for every surface crossing; the pool grows to what an
+// iteration needed and refuses (bl::Error, with the numbers) what the device or memory_cap_mib
+// cannot hold.
+//
+// Not yet: textured albedo beyond the camera's first vertex (the material's albedo is used there),
+// imperfect bundles (point splats, the poster).
+//
+// Parameters (`bundlelab modes`):
+//   bundle_count       64      bundles       resident bundles per iteration (K)
+//   paths_per_pixel    4       paths         camera paths per pixel through each iteration's bundles
+//   bundle_resolution  128     pixels        side of each bundle
+//   directions         halton                halton or random directions on the sphere
+//   max_segments       64      segments      at most this many per path (1 emitters, 2 direct light)
+//   rr_segments        5       segments      Russian roulette from this path length on
+//   shadow_resolution  512     texels        side of each shadow cube face
+//   memory_cap_mib     2048    MiB           node storage limit of the bundle pool
+#pragma once
+
+#include "modes/Mode.h"
+
+#include <memory>
+#include <optional>
+
+namespace bl {
+
+class MultibounceMode final : public Mode {
+public:
+    static constexpr const char* kBundleCount = "bundle_count";
+    static constexpr const char* kPathsPerPixel = "paths_per_pixel";
+    static constexpr const char* kBundleResolution = "bundle_resolution";
+    static constexpr const char* kDirections = "directions";
+    static constexpr const char* kMaxSegments = "max_segments";
+    static constexpr const char* kRrSegments = "rr_segments";
+    static constexpr const char* kShadowResolution = "shadow_resolution";
+    static constexpr const char* kMemoryCap = "memory_cap_mib";
+
+    static std::vector<ParamSpec> parameters();
+    static std::unique_ptr<Mode> create(const Settings& settings);
+
+    explicit MultibounceMode(const Settings& settings);
+    ~MultibounceMode() override;
+
+    std::string_view name() const override { return "multibounce"; }
+    void setScene(const Scene& scene, vk::Context* gpu) override;
+    void iterate(const IterationInfo& info) override;
+    ImageSet resolve() override;
+    const Settings& settings() const override { return mSettings; }
+    PassTimes timings() const override;
+    std::vector<PlannedPass> plan(const Scene& scene) const override;
+
+private:
+    struct Gpu;
+    void buildBundles(const IterationInfo& info);
+    std::uint32_t pathsPerPixel() const { return static_cast<std::uint32_t>(mSettings.getInt(kPathsPerPixel)); }
+
+    Settings mSettings;
+    const Scene* mScene = nullptr;
+    vk::Context* mContext = nullptr;
+    std::unique_ptr<Gpu> mGpu;
+    std::uint32_t mIterations = 0;
+    std::optional<double> mShadowTime; // scene time the shadow maps were rendered for
+};
+
+} // namespace bl

@@ -1,0 +1,173 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Mode multibounce, one camera path per pixel through K resident omnidirectional bundles ([TO12]
+// section 7, EQUATIONS.md section 3). From the G-buffer's visible point, each bounce picks a stored
+// bundle k uniformly, takes d = omega_k or -omega_k (the one on the shading normal's side: density
+// p_r(d) = 1 / (2 pi) on that hemisphere for uniform directions), finds the point's place in its
+// bundle pixel and the next fragment along d in the depth-sorted list: that fragment's hit payload
+// is the next vertex. No ray is traced. At every vertex: emission when the path meets an emitter's
+// front face, point/spot light by cube shadow maps, the environment when the path escapes.
+// Weights are f cos / p_r; Russian roulette after push.rrSegments segments.
+#include "modes/multibounce/MultibounceShared.h"
+#include "bundle/Traversal.glsl"
+#include "shared/Brdf.h"
+#include "shared/Lights.h"
+#include "shared/Octahedral.h"
+#include "shared/Random.h"
+#define BL_ACCUM_LAYERS kMultibounceAccumLayers
+#include "gpu/CameraSet.glsl"
+#define BL_SHADOW_SET kMultibounceSet
+#define BL_SHADOW_BINDING kMultibounceBindingShadowMaps
+#include "gpu/ShadowCubeLookup.glsl"
+
+layout(local_size_x = kMultibounceGroupSize, local_size_y = kMultibounceGroupSize) in;
+
+layout(set = kMultibounceSet, binding = kMultibounceBindingLights) readonly buffer LightBlock { GpuLight lights[]; };
+layout(set = kMultibounceSet, binding = kMultibounceBindingEmitters) readonly buffer EmitterBlock {
+    MultibounceEmitter emitters[];
+};
+layout(push_constant) uniform PushBlock { MultibouncePush push; };
+
+// Layer of a contribution whose path has `segments` segments (1 = emitted, 2 = direct, ...).
+uint layerOf(uint segments) { return min(segments, kPathLayerCount) - 1u; }
+
+// Emitted radiance of triangle `id`'s front face: binary search of the draw that holds it.
+vec3 emissionOf(uint id) {
+    uint lo = 0u, hi = push.emitterCount;
+    while (hi - lo > 1u) {
+        uint mid = (lo + hi) / 2u;
+        if (emitters[mid].firstTriangle <= id) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return emitters[lo].emission;
+}
+
+// Point and spot lights at x (normal n turned toward wo), visibility from the cube shadow maps.
+vec3 directLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
+    vec3 radiance = vec3(0.0);
+    for (uint i = 0u; i < push.lightCount; ++i) {
+        GpuLight light = lights[i];
+        vec3 d = x - light.position;
+        float r2 = dot(d, d);
+        if (!(r2 > 0.0)) {
+            continue;
+        }
+        vec3 fromLight = d * inversesqrt(r2);
+        vec3 wi = -fromLight;
+        float cosine = dot(n, wi);
+        float profile = blLightProfile(light, fromLight);
+        if (cosine <= 0.0 || profile <= 0.0) {
+            continue;
+        }
+        float visibility = blShadowVisibility(kShadowCubeFaces * i, push.shadowResolution, d, n);
+        if (visibility <= 0.0) {
+            continue;
+        }
+        radiance += blEvalBrdf(m, albedo, n, wi, wo) * light.intensity * (profile * visibility * cosine / r2);
+    }
+    return radiance;
+}
+
+// One camera path from the G-buffer's vertex (x0, n0 facing the camera, material m0), its
+// contributions split by path length into `layers`.
+void tracePath(vec3 x0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 emitted, uint pixelIndex, uint sampleIndex,
+               out vec3 layers[kPathLayerCount]) {
+    for (uint l = 0u; l < kPathLayerCount; ++l) {
+        layers[l] = vec3(0.0);
+    }
+    vec3 x = x0;
+    vec3 n = n0;
+    GpuMaterial m = m0;
+    vec3 albedo = albedo0;
+    vec3 wo = normalize(camera.position - x);
+    layers[kPathEmitted] = emitted;
+
+    BundleNodes nodes = BundleNodes(push.pool.nodes);
+    BundleHitPayload hits = BundleHitPayload(push.pool.payload);
+    RandomStream rng = blRandomStream(push.seed, pixelIndex, sampleIndex);
+    vec3 throughput = vec3(1.0);
+    // x was reached by `segments` segments; its emission is counted.
+    for (uint segments = 1u; segments < push.maxSegments; ++segments) {
+        layers[layerOf(segments + 1u)] += throughput * directLight(x, n, m, albedo, wo);
+
+        vec2 u = blRandom2(rng);
+        uint k = min(uint(u.x * float(push.pool.slots)), push.pool.slots - 1u);
+        BundleFrame frame = blBundlePoolFrame(push.pool, k);
+        float cosine = dot(n, frame.direction);
+        float side = cosine >= 0.0 ? 1.0 : -1.0;
+        vec3 d = side * frame.direction;
+        vec3 weight = blEvalBrdf(m, albedo, n, d, wo) * (abs(cosine) / push.hemispherePdf);
+        if (segments >= push.rrSegments) {
+            vec3 next = throughput * weight;
+            float survival = min(max(next.x, max(next.y, next.z)), kMultibounceMaxSurvival);
+            if (!(u.y < survival)) {
+                break;
+            }
+            weight /= survival;
+        }
+        throughput *= weight;
+
+        ivec2 bundlePixel;
+        float depth;
+        if (!blBundlePixel(frame, x, bundlePixel, depth)) {
+            break; // outside the frame around the scene's bounding sphere: cannot happen for scene points
+        }
+        uint head = blBundleHead(blBundlePoolHeads(push.pool, k), frame, bundlePixel);
+        uint hit = blBundleSortedNearest(nodes, head, depth, side, blBundleOwnSurfaceEpsilon(frame, cosine), frame);
+        if (hit == kBundleNil) {
+            if (push.environmentPresent != 0u) {
+                layers[layerOf(segments + 1u)] +=
+                    throughput * textureLod(environment, blEnvDirectionToUv(d, push.environmentRotation), 0.0).rgb;
+            }
+            break;
+        }
+        BundleNode node = nodes.nodes[hit];
+        BundleHit payload = hits.hits[hit];
+        // The next vertex lies on the bundle pixel's centre ray, up to half a pixel beside the
+        // exact ray from x: the bundle-resolution bias, which shrinks with the pixel size.
+        x = frame.origin + (float(bundlePixel.x) + 0.5) * frame.pixelSize * frame.axisX +
+            (float(bundlePixel.y) + 0.5) * frame.pixelSize * frame.axisY + node.depth * frame.direction;
+        wo = -d;
+        vec3 shading = blUnpackOctahedral(payload.normal);
+        n = dot(shading, wo) >= 0.0 ? shading : -shading; // two-sided reflection
+        if (blBundleFacesBack(node.next, side) && (payload.material & kBundleHitSplat) == 0u) {
+            layers[layerOf(segments + 1u)] += throughput * emissionOf(payload.id); // front faces emit
+        }
+        m = materials[payload.material & kBundleHitMaterialMask];
+        albedo = m.albedo; // textured albedo beyond the first vertex: not yet (MultibounceMode.h)
+    }
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (pixel.x >= int(push.width) || pixel.y >= int(push.height)) {
+        return;
+    }
+    // The pool contract: a build that ran out of nodes left lists incomplete; the mode grows the
+    // pool and redoes the iteration, so nothing of this one may be added.
+    if (blBundlePoolOverflowed(BundleCounterBlock(push.pool.counters))) {
+        return;
+    }
+    if (!blCameraHitSurface(pixel)) {
+        vec3 background = blCameraBackground(pixel, push.samplePosition, push.environmentPresent != 0u,
+                                             push.environmentRotation);
+        for (uint s = 0u; s < push.pathsPerPixel; ++s) {
+            blAccumulateLayer(pixel, kPathEmitted, background); // every pixel gets pathsPerPixel samples
+        }
+        return;
+    }
+    vec3 x0 = imageLoad(gbuffer[kGBufferPosition], pixel).xyz;
+    vec4 normalMaterial = imageLoad(gbuffer[kGBufferNormal], pixel);
+    GpuMaterial m0 = materials[uint(normalMaterial.w)];
+    vec3 albedo0 = imageLoad(gbuffer[kGBufferAlbedo], pixel).rgb;
+    vec3 emitted = imageLoad(gbuffer[kGBufferEmission], pixel).rgb;
+    uint pixelIndex = uint(pixel.y) * push.width + uint(pixel.x);
+    for (uint s = 0u; s < push.pathsPerPixel; ++s) {
+        vec3 layers[kPathLayerCount];
+        tracePath(x0, normalMaterial.xyz, m0, albedo0, emitted, pixelIndex, push.iteration * push.pathsPerPixel + s, layers);
+        blAccumulate(pixel, layers);
+    }
+}
