@@ -103,3 +103,30 @@ TEST_F(RasterScenes, AnimatedSceneFollowsSceneTime) {
     shadow = std::find_if(passes.begin(), passes.end(), [](const PassTime& p) { return p.name == "shadow maps"; });
     EXPECT_EQ(shadow->count, 1u);
 }
+
+// Within one run (no setScene between), a new scene time re-renders the shadow maps: a second
+// centre-sampled iteration at t = 2 must add exactly what a fresh run at t = 2 shows. Stale maps
+// (from t = 0) would keep the short block's old shadow on the floor for that sample.
+TEST_F(RasterScenes, ShadowsFollowTheSceneTimeWithinOneRun) {
+    Scene s = loadScene(sourcePath("data/cornell-box/cornell-animated.toml"));
+    s.camera.resolution = {64, 64};
+    s.camera.keys.clear(); // a fixed camera: only the block (and its shadow) moves
+    const std::vector<std::string> settings = {"shadow_resolution=256", "jitter=false"};
+    auto renderAt = [&](std::initializer_list<double> times) {
+        std::unique_ptr<Mode> mode = createMode("raster", settings);
+        mode->setScene(s, &ctx());
+        std::uint32_t frame = 0;
+        for (double t : times) mode->iterate({frame++, 0, t});
+        return mode->resolve().radiance();
+    };
+    const Image start = renderAt({0.0}), end = renderAt({2.0}), both = renderAt({0.0, 2.0});
+    double moved = 0.0, worst = 0.0;
+    for (std::size_t i = 0; i < both.pixelCount(); ++i) {
+        const glm::vec3 expected = 0.5f * (start.pixels()[i] + end.pixels()[i]);
+        worst = std::max(worst, double(glm::length(both.pixels()[i] - expected) / (glm::length(expected) + 1e-3f)));
+        moved += glm::length(end.pixels()[i] - start.pixels()[i]);
+    }
+    ASSERT_GT(moved / double(both.pixelCount()), 1e-3) << "the block must move for this test to mean anything";
+    // Float rounding of the two sums only.
+    EXPECT_LT(worst, 1e-5) << "largest relative difference from the mean of fresh renders at t = 0 and t = 2";
+}
