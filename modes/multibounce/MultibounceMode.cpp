@@ -17,6 +17,10 @@ namespace bl {
 
 namespace {
 constexpr double kMiB = 1024.0 * 1024.0;
+// First pool size, in nodes per bundle pixel: closed rooms seen from outside their bounding
+// sphere's frame have depth complexity ~1-2 per pixel (the Cornell box: 1.05); the pool grows to
+// what an iteration needs, so starting low keeps large K and R from asking for memory never used.
+constexpr std::uint64_t kInitialNodesPerPixel = 2;
 
 DirectionSequence sequenceOf(const std::string& name) {
     return name == "random" ? DirectionSequence::Random : DirectionSequence::Halton;
@@ -37,8 +41,10 @@ std::vector<ParamSpec> MultibounceMode::parameters() {
         {kRrSegments, std::int64_t{5}, "segments", "Russian roulette from this path length on", 1, 1024, {}},
         {kShadowResolution, std::int64_t{512}, "texels", "side of each shadow cube face (point and spot lights)", 16, 8192,
          {}},
-        {kMemoryCap, std::int64_t{2048}, "MiB", "node storage limit of the bundle pool; an iteration that needs more is refused",
-         1, 1 << 20, {}},
+        {kMemoryCap, std::int64_t{0}, "MiB",
+         "node storage limit of the bundle pool (0: half the largest device-local heap); an iteration that needs more is "
+         "refused",
+         0, 1 << 20, {}},
     };
 }
 
@@ -122,12 +128,13 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     options.slotPixels = resolution * resolution;
     options.payload = BundlePayload::Hit;
     options.sortable = true;
+    options.initialNodes = kInitialNodesPerPixel * slots * options.slotPixels;
     options.memoryCapBytes = static_cast<std::uint64_t>(mSettings.getInt(kMemoryCap)) << 20;
     try {
         g->pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
     } catch (const Error& e) {
         throw Error("multibounce: " + std::to_string(slots) + " bundles of " + std::to_string(resolution) + "^2: " +
-                    e.what() + " (lower bundle_count or bundle_resolution, or raise memory_cap_mib)");
+                    e.what() + " (lower bundle_count or bundle_resolution, or raise memory_cap_mib where the device allows)");
     }
     // A scope per build and per sort, plus the camera passes.
     constexpr std::uint32_t kOtherScopes = 8;
@@ -196,7 +203,7 @@ void MultibounceMode::buildBundles(const IterationInfo& info) {
                         "^2 need " + std::to_string(status.requested) + " nodes (" +
                         std::to_string(status.requested * perNode / kMiB) + " MiB), the pool holds at most " +
                         std::to_string(g.pool->maxNodes()) + " (" + std::to_string(g.pool->maxNodes() * perNode / kMiB) +
-                        " MiB: the device's limits or memory_cap_mib); about " + std::to_string(std::uint64_t(fits)) +
+                        " MiB: memory_cap_mib or the device's limits); about " + std::to_string(std::uint64_t(fits)) +
                         " bundles fit at this resolution");
         }
         ++g.rebuilds;

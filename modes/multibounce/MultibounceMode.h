@@ -33,7 +33,8 @@
 //   max_segments       64      segments      at most this many per path (1 emitters, 2 direct light)
 //   rr_segments        5       segments      Russian roulette from this path length on
 //   shadow_resolution  512     texels        side of each shadow cube face
-//   memory_cap_mib     2048    MiB           node storage limit of the bundle pool
+//   memory_cap_mib     0       MiB           node storage limit of the bundle pool (0: half the
+//                                            largest device-local heap)
 #pragma once
 
 #include "modes/Mode.h"
