@@ -1,6 +1,7 @@
 #include "modes/Registry.h"
 
 #include "base/Error.h"
+#include "modes/bidir/BidirMode.h"
 #include "modes/multibounce/MultibounceMode.h"
 #include "modes/raster/RasterMode.h"
 #include "modes/reference/ReferenceMode.h"
@@ -10,6 +11,8 @@ namespace bl {
 
 namespace {
 const ModeEntry kModes[] = {
+    {"bidir", "real-time bidirectional one-bounce light: VPLs + ray-bundles with MIS [TO12 Eq. 3-6]", true,
+     &BidirMode::parameters, &BidirMode::create},
     {"multibounce", "global illumination of any path length through K resident omnidirectional bundles [TO12 section 7]",
      true, &MultibounceMode::parameters, &MultibounceMode::create},
     {"raster", "rasterized direct light from point/spot lights (cube shadow maps), emitters, environment",

@@ -1,0 +1,324 @@
+#include "modes/bidir/BidirMode.h"
+
+#include "base/Error.h"
+#include "bundle/BundleFrame.h"
+#include "gpu/CameraPass.h"
+#include "gpu/ShadowCubePass.h"
+#include "modes/bidir/VplSampler.h"
+#include "scene/Scene.h"
+#include "vk/Commands.h"
+#include "vk/Descriptors.h"
+
+#include <algorithm>
+#include <cstring>
+#include <modes/bidir/BidirShared.h>
+#include <modes/bidir/evaluate.comp.spv.h>
+
+namespace bl {
+
+namespace {
+constexpr double kMiB = 1024.0 * 1024.0;
+
+// How far a VPL's shadow cube centre sits off its surface, as a fraction of the scene's bounding
+// radius: the cube must not sit exactly in the VPL's own plane (that plane, seen edge-on, would
+// shadow grazing receivers), and 1e-3 of the scene is far below any feature the cube resolves at
+// its 256^2 default (a texel spans ~4e-3 of the scene at unit distance).
+constexpr float kVplLiftFraction = 1e-3f;
+
+std::uint32_t strategyOf(const std::string& name) {
+    if (name == "vpl") return shader::kBidirStrategyVpl;
+    if (name == "bundle") return shader::kBidirStrategyBundle;
+    return shader::kBidirStrategyMis;
+}
+} // namespace
+
+std::vector<ParamSpec> BidirMode::parameters() {
+    return {
+        {kPairs, std::int64_t{21}, "pairs", "K VPL/bundle pairs per frame ([TO12] used 21)", 1, 4096, {}},
+        {kStrategy, std::string("mis"), "",
+         "one-bounce strategy: vpl (light paths), bundle (camera paths) or mis (both, balance heuristic)", 0, 0,
+         {"vpl", "bundle", "mis"}},
+        {kBundleResolution, std::int64_t{256}, "pixels", "side of each bundle ([TO12]: 256^2)", 16, 8192, {}},
+        {kShadowResolution, std::int64_t{1024}, "texels", "face side of the lights' shadow cubes ([TO12]: 1024^2)",
+         16, 8192, {}},
+        {kVplShadowResolution, std::int64_t{256}, "texels", "face side of each VPL's shadow cube ([TO12]: 256^2)", 16,
+         8192, {}},
+        {kDirections, std::string("random"), "", "bundle direction sequence", 0, 0, {"random", "halton"}},
+        {kMemoryCap, std::int64_t{2048}, "MiB", "node storage limit of the bundle pool; a frame that needs more is refused",
+         1, 1 << 20, {}},
+    };
+}
+
+std::unique_ptr<Mode> BidirMode::create(const Settings& settings) { return std::make_unique<BidirMode>(settings); }
+
+BidirMode::BidirMode(const Settings& settings) : mSettings(settings) {}
+
+struct BidirMode::Gpu {
+    std::unique_ptr<gpu::GpuScene> scene;
+    std::unique_ptr<gpu::CameraPass> camera;
+    std::unique_ptr<gpu::ShadowCubePass> shadows;    // cube l = light l
+    std::unique_ptr<gpu::ShadowCubePass> vplShadows; // cube k = VPL k
+    std::unique_ptr<BundlePool> pool;                // null for strategy = vpl
+    std::unique_ptr<DirectionSampler> directions;
+    std::unique_ptr<VplSampler> vpls;
+    vk::Buffer vplBuffer;
+    vk::DescriptorSetLayout setLayout;
+    vk::DescriptorPool descriptorPool;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    vk::PipelineLayout pipelineLayout;
+    vk::Pipeline pipeline;
+    vk::GpuTimer timer;
+    Bounds bounds;
+    std::uint64_t nodesLast = 0;
+    std::uint32_t rebuilds = 0;
+    std::uint32_t invalidVpls = 0; // over all frames: light rays that escaped or met black surfaces
+};
+
+BidirMode::~BidirMode() = default;
+
+std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
+    const SceneFeatures f = scene.features();
+    const std::string strategy = mSettings.getString(kStrategy);
+    const auto pairs = std::to_string(mSettings.getInt(kPairs));
+    const bool lights = f.shadowCastingLights() > 0;
+    std::vector<PlannedPass> p;
+    p.push_back({"gbuffer", true, std::to_string(f.triangles) + " triangles, jittered every frame"});
+    p.push_back({"light shadow cubes", lights,
+                 lights ? std::to_string(f.shadowCastingLights()) + " light(s) x 6 faces; " +
+                              (f.animated ? "every frame (animated scene)" : "once (static scene)")
+                        : "no point or spot lights"});
+    const bool vpl = lights && strategy != "bundle";
+    p.push_back({"VPL rays + VPL shadow cubes", vpl,
+                 !lights ? "no point or spot light to start light paths"
+                 : vpl   ? pairs + " VPLs per frame (CPU rays, Embree), a " +
+                             std::to_string(mSettings.getInt(kVplShadowResolution)) + "^2 cube each"
+                         : "strategy = bundle uses no VPL"});
+    const bool bundles = lights && strategy != "vpl";
+    p.push_back({"bundle builds", bundles,
+                 !lights  ? "no point or spot light: nothing for camera paths to reach"
+                 : bundles ? pairs + " bundles of " + std::to_string(mSettings.getInt(kBundleResolution)) +
+                                 "^2 with hit payload per frame"
+                           : "strategy = vpl uses no bundle"});
+    p.push_back({"evaluate", true, lights ? "direct + one-bounce (" + strategy + ") at every visible point"
+                                          : "no point/spot light: emitters and environment background only"});
+    if (f.emissiveMeshes || f.environment) {
+        p.push_back({"area/environment light", false, "not lit by bidir yet: use reference or multibounce"});
+    }
+    return p;
+}
+
+void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
+    if (!ctx) {
+        throw Error("mode bidir needs a Vulkan device");
+    }
+    mScene = &scene;
+    mContext = ctx;
+    mIterations = 0;
+    mShadowTime.reset();
+    const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
+    const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
+    const auto pairs = static_cast<std::uint32_t>(mSettings.getInt(kPairs));
+    const auto shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
+    const auto vplSide = static_cast<VkDeviceSize>(mSettings.getInt(kVplShadowResolution));
+    const std::uint32_t strategy = strategyOf(mSettings.getString(kStrategy));
+    ctx->requireDeviceMemory(VkDeviceSize(width) * height * gpu::CameraPass::bytesPerPixel(shader::kBidirAccumLayers) +
+                                 shadowSide * shadowSide * 4 * (6 * scene.lights.size() + 1) +
+                                 vplSide * vplSide * 4 * (6 * pairs + 1),
+                             "bidir at " + std::to_string(width) + "x" + std::to_string(height));
+    auto g = std::make_unique<Gpu>();
+    g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
+    g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kBidirAccumLayers);
+    g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
+    // The constructor wants room for the lights' cubes too; VPL cubes use slots 0 .. K-1 only.
+    const auto vplCubes = std::max<std::uint32_t>(pairs, g->shadows->lightCount());
+    g->vplShadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(vplSide), vplCubes);
+    g->vpls = std::make_unique<VplSampler>(scene);
+    g->vplBuffer = vk::Buffer(*ctx, sizeof(shader::BidirVpl) * pairs, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              vk::MemoryUse::Upload);
+    g->bounds = scene.bounds();
+
+    if (strategy != shader::kBidirStrategyVpl && g->shadows->lightCount() > 0) {
+        if (!ctx->geometryShader()) {
+            throw Error("bidir: strategy " + mSettings.getString(kStrategy) +
+                        " needs bundle hit payloads (gl_PrimitiveID: geometry shaders); use strategy=vpl");
+        }
+        const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+        BundlePoolOptions options;
+        options.slots = pairs;
+        options.slotPixels = resolution * resolution;
+        options.payload = BundlePayload::Hit;
+        options.memoryCapBytes = static_cast<std::uint64_t>(mSettings.getInt(kMemoryCap)) << 20;
+        try {
+            g->pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
+        } catch (const Error& e) {
+            throw Error("bidir: " + std::to_string(pairs) + " bundles of " + std::to_string(resolution) + "^2: " +
+                        e.what() + " (lower pairs_per_frame or bundle_resolution, or raise memory_cap_mib)");
+        }
+    }
+    // A scope per bundle build and per VPL cube, plus the camera, light and evaluation passes.
+    constexpr std::uint32_t kOtherScopes = 8;
+    g->timer = vk::GpuTimer(*ctx, 2 * pairs + kOtherScopes);
+
+    VkDevice device = ctx->device();
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    g->setLayout = vk::makeDescriptorSetLayout(
+        device, {{shader::kBidirBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kBidirBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
+                 {shader::kBidirBindingVplMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
+                 {shader::kBidirBindingVpls, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
+    g->descriptorPool = vk::DescriptorPool(device, 1, 2);
+    g->set = g->descriptorPool.allocate(g->setLayout.get());
+    vk::DescriptorWriter()
+        .buffer(shader::kBidirBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
+        .image(shader::kBidirBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->shadows->maps().view(),
+               VK_IMAGE_LAYOUT_GENERAL)
+        .image(shader::kBidirBindingVplMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->vplShadows->maps().view(),
+               VK_IMAGE_LAYOUT_GENERAL)
+        .buffer(shader::kBidirBindingVpls, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->vplBuffer.get())
+        .update(device, g->set);
+    VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
+    g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BidirPush), cs);
+    g->pipeline = vk::makeComputePipeline(device, kSpv_modes_bidir_evaluate_comp, g->pipelineLayout.get());
+    mGpu = std::move(g);
+}
+
+// Builds the K bundles of this frame into the pool; grows the pool and builds again when they did
+// not fit (nothing partial is kept), and refuses what the limits cannot hold.
+void BidirMode::buildBundles(const IterationInfo& info) {
+    Gpu& g = *mGpu;
+    const std::uint32_t slots = g.pool->slots();
+    const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+    std::vector<shader::BundleFrame> frames(slots);
+    for (std::uint32_t k = 0; k < slots; ++k) {
+        const BundleDirection dir = g.directions->sample(mIterations * slots + k);
+        frames[k] = bundleFrameForSphere(dir.omega, dir.rotation, g.bounds.center(), g.bounds.radius(), resolution);
+    }
+    for (;;) {
+        mContext->submitAndWait([&](VkCommandBuffer cmd) {
+            g.timer.begin(cmd);
+            g.pool->recordReset(cmd);
+            for (std::uint32_t k = 0; k < slots; ++k) {
+                g.pool->recordBuild(cmd, k, frames[k], BundleGeometry::triangles(info.time), &g.timer);
+            }
+        });
+        g.timer.collect();
+        const BundlePoolStatus status = g.pool->status();
+        if (!status.overflowed()) {
+            g.nodesLast = status.requested;
+            return;
+        }
+        if (!g.pool->grow(status)) {
+            const double perNode = double(g.pool->bytesPerNode());
+            throw Error("bidir: " + std::to_string(slots) + " bundles of " + std::to_string(resolution) + "^2 need " +
+                        std::to_string(status.requested) + " nodes (" + std::to_string(status.requested * perNode / kMiB) +
+                        " MiB), the pool holds at most " + std::to_string(g.pool->maxNodes()) +
+                        " (the device's limits or memory_cap_mib)");
+        }
+        ++g.rebuilds;
+    }
+}
+
+void BidirMode::iterate(const IterationInfo& info) {
+    if (!mGpu) {
+        throw Error("bidir: iterate() before setScene()");
+    }
+    Gpu& g = *mGpu;
+    const auto pairs = static_cast<std::uint32_t>(mSettings.getInt(kPairs));
+    const std::uint32_t strategy = strategyOf(mSettings.getString(kStrategy));
+    const std::uint32_t lightCount = g.shadows->lightCount();
+    if (!g.directions) {
+        // The seed decorrelates runs; directions are reproducible from (settings, seed).
+        g.directions = std::make_unique<DirectionSampler>(mSettings.getString(kDirections) == "halton"
+                                                              ? DirectionSequence::Halton
+                                                              : DirectionSequence::Random,
+                                                          static_cast<std::uint32_t>(info.seed));
+    }
+    if (g.pool) {
+        buildBundles(info);
+    }
+    const bool useVpls = lightCount > 0 && strategy != shader::kBidirStrategyBundle;
+    std::vector<shader::BidirVpl> vpls(pairs);
+    if (useVpls) {
+        vpls = g.vpls->sample(std::uint64_t(mIterations) * pairs, pairs, static_cast<std::uint32_t>(info.seed), info.time,
+                              kVplLiftFraction * g.bounds.radius());
+        for (const shader::BidirVpl& v : vpls) g.invalidVpls += v.valid ? 0u : 1u;
+    }
+    std::memcpy(g.vplBuffer.data(), vpls.data(), sizeof(shader::BidirVpl) * pairs);
+
+    const std::uint32_t width = g.camera->width(), height = g.camera->height();
+    const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time);
+    // Static scenes need the lights' shadow cubes once; animated ones whenever the time changes.
+    const bool renderShadows =
+        lightCount > 0 && (!mShadowTime || (g.scene->features().animated && *mShadowTime != info.time));
+    if (renderShadows) {
+        g.scene->setLightTime(*mContext, info.time); // keyframed lights move with their shadows
+    }
+    shader::BidirPush push{};
+    if (g.pool) {
+        push.pool = g.pool->view();
+    }
+    push.width = width;
+    push.height = height;
+    push.pairs = lightCount > 0 ? pairs : 0u;
+    push.lightCount = lightCount;
+    push.shadowResolution = g.shadows->resolution();
+    push.vplResolution = g.vplShadows->resolution();
+    push.strategy = strategy;
+    // Uniform directions: every direction of a hemisphere has the same density (the axis is arbitrary).
+    push.hemispherePdf = g.directions->hemispherePdf(glm::vec3(0.0f, 0.0f, 1.0f));
+    push.lightSelectPdf = lightCount > 0 ? 1.0f / float(lightCount) : 0.0f;
+    push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
+    push.environmentRotation = g.scene->environmentRotation();
+    push.samplePosition = sample.samplePosition;
+    mContext->submitAndWait([&](VkCommandBuffer cmd) {
+        g.timer.begin(cmd);
+        if (renderShadows) {
+            g.shadows->record(cmd, info.time, &g.timer);
+        }
+        for (std::uint32_t k = 0; useVpls && k < pairs; ++k) {
+            if (vpls[k].valid) {
+                g.vplShadows->record(cmd, vpls[k].cubeCentre, k, info.time, &g.timer);
+            }
+        }
+        g.camera->record(cmd, sample, &g.timer);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        const std::uint32_t scope = g.timer.start(cmd, "evaluate");
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());
+        const VkDescriptorSet sets[] = {g.camera->set(), g.set};
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 2, sets, 0, nullptr);
+        vkCmdPushConstants(cmd, g.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdDispatch(cmd, vk::groupCount(width, shader::kBidirGroupSize), vk::groupCount(height, shader::kBidirGroupSize),
+                      1);
+        g.timer.stop(cmd, scope);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    });
+    g.timer.collect();
+    if (renderShadows) {
+        mShadowTime = info.time;
+    }
+    ++mIterations;
+}
+
+ImageSet BidirMode::resolve() {
+    if (!mGpu) {
+        throw Error("bidir: resolve() before setScene()");
+    }
+    Gpu& g = *mGpu;
+    ImageSet out;
+    out.iterations = mIterations; // one sample per pixel per frame (the mean over its K pairs)
+    gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations);
+    out.layers = std::move(estimate.layers);
+    out.nonFiniteSamples = estimate.nonFiniteSamples;
+    out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
+    out.counters.emplace_back("invalid_vpls", double(g.invalidVpls));
+    if (g.pool) {
+        out.counters.emplace_back("bundle_nodes_last", double(g.nodesLast));
+        out.counters.emplace_back("bundle_pool_rebuilds", double(g.rebuilds));
+    }
+    return out;
+}
+
+PassTimes BidirMode::timings() const { return mGpu ? mGpu->timer.totals() : PassTimes{}; }
+
+} // namespace bl

@@ -1,0 +1,76 @@
+// Mode `bidir`: real-time bidirectional path tracing by rasterization ([TO12], EQUATIONS.md
+// section 2): camera sub-paths by global ray-bundles, light sub-paths by virtual point lights,
+// combined by multiple importance sampling.
+//
+// One iterate() = one frame: G-buffer, the lights' shadow cubes, then K pairs (pairs_per_frame) of
+// {one VPL y_k on the first surface a light ray meets (modes/bidir/VplSampler.h: pdf stated
+// there), its shadow cube, one bundle along a random omega_k}, evaluated at every visible point x
+// by shaders/modes/bidir/evaluate.comp.glsl:
+//   VPL strategy (j = 1)    I f_{0,y,x} f_{y,x,o} G(y, x) V(y, x) / (P(l) p_e(omega_{0,y}))
+//   bundle strategy (j = 2) I V(x0, y) (n_y.w_{y,0}) / |y - x0|^2 f_{0,y,x} f_{y,x,o} (n.d) / p_r(d),
+//                           y = the next surface from x along d = +-omega_k in bundle k
+//   mis                     each weighted by the balance heuristic p_Aj / (p_A1 + p_A2) of the
+//                           area densities of y ([TO12] Eq. 3-6).
+// The mean over the K pairs is one sample of the `indirect1` layer (3 segments); `direct` (the
+// lights by their shadow cubes, 4x4 PCF, as `raster`) and `emitted` are written beside it.
+//
+// Parameters (`bundlelab modes`):
+//   pairs_per_frame        21       K VPL/bundle pairs per frame ([TO12] used 21)
+//   strategy               mis      vpl | bundle | mis
+//   bundle_resolution      256      pixels per side of each bundle
+//   shadow_resolution      1024     texels per face side of the lights' shadow cubes
+//   vpl_shadow_resolution  256      texels per face side of each VPL's shadow cube
+//   directions             random   bundle directions: random or halton
+//   memory_cap_mib         2048     bundle node pool limit (a frame that needs more is refused)
+//
+// Not yet: two-bounce (Eq. 7-8), roughness clamping (Eq. 9-17), interleaved sampling, reflective
+// shadow maps on the GPU (VPL rays are traced on the CPU), textured albedo at VPLs and bundle hits
+// (their material's albedo is used), area emitters and environment light (not lit here).
+#pragma once
+
+#include "bundle/BundlePool.h"
+#include "bundle/DirectionSampler.h"
+#include "modes/Mode.h"
+
+#include <memory>
+#include <optional>
+
+namespace bl {
+
+class BidirMode final : public Mode {
+public:
+    static constexpr const char* kPairs = "pairs_per_frame";
+    static constexpr const char* kStrategy = "strategy";
+    static constexpr const char* kBundleResolution = "bundle_resolution";
+    static constexpr const char* kShadowResolution = "shadow_resolution";
+    static constexpr const char* kVplShadowResolution = "vpl_shadow_resolution";
+    static constexpr const char* kDirections = "directions";
+    static constexpr const char* kMemoryCap = "memory_cap_mib";
+
+    static std::vector<ParamSpec> parameters();
+    static std::unique_ptr<Mode> create(const Settings& settings);
+
+    explicit BidirMode(const Settings& settings);
+    ~BidirMode() override;
+
+    std::string_view name() const override { return "bidir"; }
+    void setScene(const Scene& scene, vk::Context* gpu) override;
+    void iterate(const IterationInfo& info) override;
+    ImageSet resolve() override;
+    const Settings& settings() const override { return mSettings; }
+    PassTimes timings() const override;
+    std::vector<PlannedPass> plan(const Scene& scene) const override;
+
+private:
+    struct Gpu;
+    void buildBundles(const IterationInfo& info);
+
+    Settings mSettings;
+    const Scene* mScene = nullptr;
+    vk::Context* mContext = nullptr;
+    std::unique_ptr<Gpu> mGpu;
+    std::uint32_t mIterations = 0;
+    std::optional<double> mShadowTime; // scene time of the lights' shadow cubes
+};
+
+} // namespace bl
