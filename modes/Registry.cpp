@@ -1,6 +1,7 @@
 #include "modes/Registry.h"
 
 #include "base/Error.h"
+#include "modes/atlas/AtlasMode.h"
 #include "modes/bidir/BidirMode.h"
 #include "modes/multibounce/MultibounceMode.h"
 #include "modes/raster/RasterMode.h"
@@ -11,6 +12,8 @@ namespace bl {
 
 namespace {
 const ModeEntry kModes[] = {
+    {"atlas", "diffuse radiance exchange in a texture atlas along sorted global ray-bundles [HHGM10 Eq. 3]", true,
+     &AtlasMode::parameters, &AtlasMode::create},
     {"bidir", "real-time bidirectional one-bounce light: VPLs + ray-bundles with MIS [TO12 Eq. 3-6]", true,
      &BidirMode::parameters, &BidirMode::create},
     {"multibounce", "global illumination of any path length through K resident omnidirectional bundles [TO12 section 7]",

@@ -1,0 +1,404 @@
+#include "modes/atlas/AtlasMode.h"
+
+#include "atlas/Atlas.h"
+#include "atlas/AtlasLink.h"
+#include "base/Error.h"
+#include "base/Log.h"
+#include "bundle/BundleFrame.h"
+#include "bundle/BundlePool.h"
+#include "bundle/DirectionSampler.h"
+#include "gpu/CameraPass.h"
+#include "modes/atlas/AtlasTables.h"
+#include "modes/atlas/AtlasViewPass.h"
+#include "sampling/EnvironmentLight.h"
+#include "scene/Scene.h"
+#include "vk/Commands.h"
+#include "vk/Descriptors.h"
+
+#include <modes/atlas/AtlasShared.h>
+#include <modes/atlas/exchange.comp.spv.h>
+#include <modes/atlas/shade.comp.spv.h>
+#include <modes/atlas/update.comp.spv.h>
+#include <shared/Random.h>
+
+#include <cmath>
+#include <cstring>
+
+namespace bl {
+
+namespace {
+constexpr double kMiB = 1024.0 * 1024.0;
+// First pool size in nodes per bundle pixel: closed rooms seen along a direction cross ~2-4
+// surfaces per pixel inside the frame's disc; the pool grows to what a direction needs.
+constexpr std::uint64_t kInitialNodesPerPixel = 4;
+// Keys of the sub-pixel offset of each direction's grid: decorrelated from the direction's own
+// numbers (DirectionSampler) by distinct hash keys.
+constexpr std::uint32_t kGridKeyX = 0x68e31da4u;
+constexpr std::uint32_t kGridKeyY = 0xb5297a4du;
+// Device bytes per texel: texel table (32), sender (2 x 16), received (2 x 16), sums (2 x 32), chart (4).
+constexpr VkDeviceSize kBytesPerTexel = 32 + 32 + 32 + 64 + 4;
+constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                        VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+
+DirectionSequence sequenceOf(const std::string& name) {
+    if (name == "random") return DirectionSequence::Random;
+    if (name == "stratified") return DirectionSequence::Stratified;
+    return DirectionSequence::Halton;
+}
+
+glm::uvec2 addressOf(const vk::Context& ctx, const vk::Buffer& b) { return splitAddress(deviceAddress(ctx, b)); }
+} // namespace
+
+std::vector<ParamSpec> AtlasMode::parameters() {
+    return {
+        {kAtlasResolution, std::int64_t{512}, "texels",
+         "side of an atlas page; the texel density follows from the scene's surface area", 16, 16384, {}},
+        {kBundleResolution, std::int64_t{512}, "pixels", "side of each direction's bundle (frame over the bounding sphere)",
+         8, 8192, {}},
+        {kDirections, std::string("halton"), "", "global directions, uniform on the sphere (Hermes et al.: Halton)", 0, 0,
+         {"halton", "random", "stratified"}},
+        {kStrata, std::int64_t{1024}, "directions", "directions per pass of the stratified sequence", 1, 1 << 24, {}},
+        {kWeighting, 2.0, "",
+         "k: direction j weighs j^k in the estimate, forgetting the first directions' missing bounces (0: plain mean)",
+         0.0, 8.0, {}},
+        {kViewSamples, std::int64_t{16}, "samples", "jittered camera samples per pixel when the atlas is viewed (resolve)",
+         1, 4096, {}},
+        {kBilinear, true, "", "bilinear lookups between texel centres inside a chart (else the texel alone)", 0, 0, {}},
+        {kMemoryCap, std::int64_t{0}, "MiB",
+         "node storage limit of the bundle pool (0: half the largest device-local heap); a direction that needs more is "
+         "refused",
+         0, 1 << 20, {}},
+    };
+}
+
+std::unique_ptr<Mode> AtlasMode::create(const Settings& settings) { return std::make_unique<AtlasMode>(settings); }
+
+AtlasMode::AtlasMode(const Settings& settings) : mSettings(settings) {}
+
+struct AtlasMode::Gpu {
+    atlas::Atlas atlas;
+    atlasmode::AtlasTables tables;
+    std::unique_ptr<gpu::GpuScene> scene;
+    std::unique_ptr<gpu::CameraPass> camera;
+    std::unique_ptr<atlasmode::AtlasViewPass> view;
+    std::unique_ptr<BundlePool> pool;
+    std::unique_ptr<DirectionSampler> directions;
+    EnvironmentLight environment;
+    vk::Buffer texels, triangles, charts, sender, received, sums;
+    vk::Buffer direction; // AtlasDirection, host-written before each direction's submission
+    vk::PipelineLayout exchangeLayout, updateLayout, shadeLayout;
+    vk::Pipeline exchange, update, shade;
+    vk::DescriptorSetLayout viewSetLayout;
+    vk::DescriptorPool descriptorPool;
+    VkDescriptorSet viewSet = VK_NULL_HANDLE;
+    vk::GpuTimer timer;
+    Bounds bounds;
+    std::uint32_t texelCount = 0;
+    std::uint64_t nodesLast = 0;
+    std::uint32_t rebuilds = 0;
+};
+
+AtlasMode::~AtlasMode() = default;
+
+std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {
+    const SceneFeatures f = scene.features();
+    const auto r = std::to_string(mSettings.getInt(kBundleResolution));
+    const auto a = std::to_string(mSettings.getInt(kAtlasResolution));
+    std::vector<PlannedPass> p;
+    p.push_back({"atlas", true, a + "^2 texels per page over " + std::to_string(f.triangles) +
+                                    " triangles, built once at set-up (charts, packing, exact texel areas)"});
+    p.push_back({"bundle build", true, "one " + r + "^2 bundle per direction with hit payload (triangle, barycentrics)"});
+    p.push_back({"bundle sort", true, "depth order: consecutive hits of a list see each other"});
+    std::string exchange = "consecutive hits exchange radiance both ways (interleaved: sender = emission + mean)";
+    exchange += f.emissiveMeshes ? "; emitters are the source" : "; no emissive meshes";
+    exchange += f.environment ? "; environment at list ends" : "; no environment: list ends receive nothing";
+    p.push_back({"exchange", true, exchange});
+    p.push_back({"update", true, "received radiance into compensated sums per texel side; sender rewritten"});
+    if (f.shadowCastingLights() > 0) {
+        p.push_back({"shadow maps", false,
+                     std::to_string(f.shadowCastingLights()) +
+                         " point/spot light(s) NOT lit: shadow maps into the atlas are not implemented yet"});
+    } else {
+        p.push_back({"shadow maps", false, "no point or spot lights"});
+    }
+    if (f.glossy) {
+        p.push_back({"glossy transfer", false, "glossy lobes are NOT transported yet: their albedo only (diffuse)"});
+    } else {
+        p.push_back({"glossy transfer", false, "no glossy materials"});
+    }
+    p.push_back({"view", true, std::to_string(mSettings.getInt(kViewSamples)) +
+                                   " jittered camera samples per pixel of the atlas at resolve (G-buffer + atlas uv raster)"});
+    return p;
+}
+
+void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
+    if (!ctx) {
+        throw Error("mode atlas needs a Vulkan device");
+    }
+    mScene = &scene;
+    mContext = ctx;
+    mIterations = 0;
+    mTotalWeight = 0.0;
+    mTime = 0.0;
+    const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
+    const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
+    auto g = std::make_unique<Gpu>();
+
+    atlas::AtlasOptions atlasOptions;
+    atlasOptions.size = static_cast<int>(mSettings.getInt(kAtlasResolution));
+    g->atlas = atlas::buildAtlas(scene, atlasOptions);
+    const atlas::AtlasLink link = atlas::linkAtlas(scene, g->atlas);
+    g->tables = atlasmode::buildAtlasTables(g->atlas, link);
+    g->texelCount = static_cast<std::uint32_t>(g->tables.texels.size());
+    log::info("atlas: " + std::to_string(g->atlas.maps.width) + "x" + std::to_string(g->atlas.maps.height) + " x " +
+              std::to_string(g->atlas.maps.pages) + " page(s), " + std::to_string(g->atlas.stats.charts) +
+              " charts, utilization " + std::to_string(g->atlas.stats.utilization));
+    if (g->tables.degenerateTriangles > 0) {
+        log::warn("atlas: " + std::to_string(g->tables.degenerateTriangles) +
+                  " triangles have no atlas area; their hits exchange nothing");
+    }
+    ctx->requireDeviceMemory(VkDeviceSize(g->texelCount) * kBytesPerTexel +
+                                 VkDeviceSize(width) * height *
+                                     (gpu::CameraPass::bytesPerPixel(shader::kAtlasAccumLayers) + 16 + 4),
+                             "atlas with " + std::to_string(g->texelCount) + " texels");
+
+    g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene, &link);
+    g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kAtlasAccumLayers);
+    g->view = std::make_unique<atlasmode::AtlasViewPass>(*ctx, *g->scene, width, height);
+    g->bounds = scene.bounds();
+    g->environment = EnvironmentLight(scene.environment, false);
+
+    // One grid of R + 1 pixels a side: each direction's grid is shifted by a random sub-pixel
+    // offset (below), and the extra pixel keeps the bounding sphere covered.
+    const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution)) + 1;
+    BundlePoolOptions options;
+    options.slots = 1;
+    options.slotPixels = resolution * resolution;
+    options.payload = BundlePayload::Hit;
+    options.sortable = true;
+    options.initialNodes = kInitialNodesPerPixel * options.slotPixels;
+    options.memoryCapBytes = static_cast<std::uint64_t>(mSettings.getInt(kMemoryCap)) << 20;
+    g->pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
+    // Build, sort, exchange, update, and per view sample G-buffer, view raster, shade.
+    constexpr std::uint32_t kScopes = 16;
+    g->timer = vk::GpuTimer(*ctx, kScopes);
+
+    const std::size_t texels = g->texelCount;
+    g->texels = vk::makeBuffer(*ctx, std::span<const shader::AtlasTexel>(g->tables.texels), kStorage);
+    g->triangles = vk::makeBuffer(*ctx, std::span<const shader::AtlasTriangle>(g->tables.triangles), kStorage);
+    g->charts = vk::makeBuffer(*ctx, std::span<const std::int32_t>(g->tables.charts), kStorage);
+    // Sender starts as the emission (front sides); sums and received start at zero.
+    std::vector<glm::vec4> sender(shader::kAtlasSides * texels, glm::vec4(0.0f));
+    for (std::size_t t = 0; t < texels; ++t) {
+        sender[shader::kAtlasSides * t + shader::kAtlasFront] = glm::vec4(g->tables.texels[t].emission, 0.0f);
+    }
+    g->sender = vk::makeBuffer(*ctx, std::span<const glm::vec4>(sender), kStorage);
+    g->received = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(shader::kAtlasSides * texels)),
+                                 kStorage);
+    g->sums = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(2 * shader::kAtlasSides * texels)),
+                             kStorage);
+    g->direction = vk::Buffer(*ctx, sizeof(shader::AtlasDirection),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                              vk::MemoryUse::Upload);
+
+    VkDevice device = ctx->device();
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    g->exchangeLayout = vk::makePipelineLayout(device, {}, sizeof(shader::AtlasExchangePush), cs);
+    g->exchange = vk::makeComputePipeline(device, kSpv_modes_atlas_exchange_comp, g->exchangeLayout.get());
+    g->updateLayout = vk::makePipelineLayout(device, {}, sizeof(shader::AtlasUpdatePush), cs);
+    g->update = vk::makeComputePipeline(device, kSpv_modes_atlas_update_comp, g->updateLayout.get());
+    g->viewSetLayout = vk::makeDescriptorSetLayout(device, {{shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
+    g->descriptorPool = vk::DescriptorPool(device, 1, 1);
+    g->viewSet = g->descriptorPool.allocate(g->viewSetLayout.get());
+    vk::DescriptorWriter()
+        .image(shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->view->image().view(), VK_IMAGE_LAYOUT_GENERAL)
+        .update(device, g->viewSet);
+    VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->viewSetLayout.get()};
+    g->shadeLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::AtlasShadePush), cs);
+    g->shade = vk::makeComputePipeline(device, kSpv_modes_atlas_shade_comp, g->shadeLayout.get());
+    mGpu = std::move(g);
+}
+
+// Builds and sorts this direction's bundle; grows the pool and builds again when it did not fit,
+// and refuses what the limits cannot hold.
+void AtlasMode::buildBundle(const IterationInfo& info) {
+    Gpu& g = *mGpu;
+    const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+    const BundleDirection dir = g.directions->sample(mIterations);
+    shader::BundleFrame frame = bundleFrameForSphere(dir.omega, dir.rotation, g.bounds.center(), g.bounds.radius(),
+                                                     resolution);
+    // A random sub-pixel shift of the grid, one pixel more each way: every surface point's ray is
+    // then uniformly placed within its pixel over directions (the rotation alone leaves points
+    // near the frame's axis at a fixed phase), which the per-texel pixel counts rely on.
+    const auto seed = static_cast<std::uint32_t>(info.seed);
+    const float jx = shader::blHashRandom(seed ^ kGridKeyX, mIterations);
+    const float jy = shader::blHashRandom(seed ^ kGridKeyY, mIterations);
+    frame.origin -= (jx * frame.axisX + jy * frame.axisY) * frame.pixelSize;
+    frame.width += 1;
+    frame.height += 1;
+
+    shader::AtlasDirection params{};
+    // Radiance arriving from +omega at the last hit of a list, from -omega at the first.
+    params.environmentForward = g.environment.present() ? g.environment.radiance(frame.direction) : glm::vec3(0.0f);
+    params.environmentBackward = g.environment.present() ? g.environment.radiance(-frame.direction) : glm::vec3(0.0f);
+    params.weight = frame.pixelSize * frame.pixelSize / (shader::kPi * g.directions->hemispherePdf(frame.direction));
+    std::memcpy(g.direction.data(), &params, sizeof(params));
+
+    for (;;) {
+        mContext->submitAndWait([&](VkCommandBuffer cmd) {
+            g.timer.begin(cmd);
+            g.pool->recordReset(cmd);
+            g.pool->recordBuild(cmd, 0, frame, BundleGeometry::triangles(info.time), &g.timer);
+            g.pool->recordSort(cmd, 0, &g.timer);
+        });
+        g.timer.collect();
+        const BundlePoolStatus status = g.pool->status();
+        if (!status.overflowed()) {
+            g.nodesLast = status.requested;
+            return;
+        }
+        if (!g.pool->grow(status)) {
+            throw Error("atlas: a " + std::to_string(frame.width) + "^2 bundle needs " + std::to_string(status.requested) +
+                        " nodes (" + std::to_string(double(status.requested) * double(g.pool->bytesPerNode()) / kMiB) +
+                        " MiB), the pool holds at most " + std::to_string(g.pool->maxNodes()) +
+                        " (memory_cap_mib or the device's limits); lower bundle_resolution");
+        }
+        ++g.rebuilds;
+    }
+}
+
+void AtlasMode::iterate(const IterationInfo& info) {
+    if (!mGpu) {
+        throw Error("atlas: iterate() before setScene()");
+    }
+    Gpu& g = *mGpu;
+    if (!g.directions) {
+        // The seed decorrelates runs; directions are reproducible from (settings, seed).
+        g.directions = std::make_unique<DirectionSampler>(sequenceOf(mSettings.getString(kDirections)),
+                                                          static_cast<std::uint32_t>(info.seed),
+                                                          static_cast<std::uint32_t>(mSettings.getInt(kStrata)));
+    }
+    mTime = info.time;
+    buildBundle(info);
+
+    const std::uint32_t bundlePixels = g.pool->slotPixels();
+    shader::AtlasExchangePush exchange{};
+    exchange.pool = g.pool->view();
+    exchange.texels = addressOf(*mContext, g.texels);
+    exchange.triangles = addressOf(*mContext, g.triangles);
+    exchange.sender = addressOf(*mContext, g.sender);
+    exchange.received = addressOf(*mContext, g.received);
+    exchange.direction = addressOf(*mContext, g.direction);
+    exchange.width = static_cast<std::uint32_t>(g.atlas.maps.width);
+    exchange.height = static_cast<std::uint32_t>(g.atlas.maps.height);
+    exchange.pages = static_cast<std::uint32_t>(g.atlas.maps.pages);
+    shader::AtlasUpdatePush update{};
+    update.texels = exchange.texels;
+    update.sender = exchange.sender;
+    update.received = exchange.received;
+    update.sums = addressOf(*mContext, g.sums);
+    update.texelCount = g.texelCount;
+    const double weight = std::pow(double(mIterations + 1), mSettings.getDouble(kWeighting));
+    update.weight = float(weight);
+    update.inverseTotalWeight = float(1.0 / (mTotalWeight + weight));
+    update.clearSums = mIterations == 0 ? 1u : 0u;
+    mContext->submitAndWait([&](VkCommandBuffer cmd) {
+        g.timer.begin(cmd);
+        std::uint32_t scope = g.timer.start(cmd, "exchange");
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.exchange.get());
+        vkCmdPushConstants(cmd, g.exchangeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(exchange), &exchange);
+        vkCmdDispatch(cmd, vk::groupCount(bundlePixels, shader::kAtlasGroupSize), 1, 1);
+        g.timer.stop(cmd, scope);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        scope = g.timer.start(cmd, "update");
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.update.get());
+        vkCmdPushConstants(cmd, g.updateLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(update), &update);
+        vkCmdDispatch(cmd, vk::groupCount(shader::kAtlasSides * g.texelCount, shader::kAtlasGroupSize), 1, 1);
+        g.timer.stop(cmd, scope);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    });
+    g.timer.collect();
+    mTotalWeight += weight;
+    ++mIterations;
+}
+
+ImageSet AtlasMode::resolve() {
+    if (!mGpu) {
+        throw Error("atlas: resolve() before setScene()");
+    }
+    Gpu& g = *mGpu;
+    const auto samples = static_cast<std::uint32_t>(mSettings.getInt(kViewSamples));
+    const std::uint32_t width = g.camera->width(), height = g.camera->height();
+    g.camera->accumulator().clear(*mContext);
+    shader::AtlasShadePush push{};
+    push.sums = addressOf(*mContext, g.sums);
+    push.texels = addressOf(*mContext, g.texels);
+    push.charts = addressOf(*mContext, g.charts);
+    push.width = width;
+    push.height = height;
+    push.atlasWidth = static_cast<std::uint32_t>(g.atlas.maps.width);
+    push.atlasHeight = static_cast<std::uint32_t>(g.atlas.maps.height);
+    push.reflectedScale = mIterations > 0 ? float(1.0 / mTotalWeight) : 0.0f;
+    push.bilinear = mSettings.getBool(kBilinear) ? 1u : 0u;
+    push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
+    push.environmentRotation = g.scene->environmentRotation();
+    for (std::uint32_t k = 0; k < samples; ++k) {
+        const gpu::CameraSample sample = g.camera->sample(k, samples > 1, mTime);
+        push.samplePosition = sample.samplePosition;
+        mContext->submitAndWait([&](VkCommandBuffer cmd) {
+            g.timer.begin(cmd);
+            g.camera->record(cmd, sample, &g.timer);
+            g.view->record(cmd, sample, &g.timer);
+            const std::uint32_t scope = g.timer.start(cmd, "shade");
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.shade.get());
+            const VkDescriptorSet sets[] = {g.camera->set(), g.viewSet};
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.shadeLayout.get(), 0, 2, sets, 0, nullptr);
+            vkCmdPushConstants(cmd, g.shadeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+            vkCmdDispatch(cmd, vk::groupCount(width, shader::kAtlasViewGroupSize),
+                          vk::groupCount(height, shader::kAtlasViewGroupSize), 1);
+            g.timer.stop(cmd, scope);
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                              VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+        });
+        g.timer.collect();
+    }
+    ImageSet out;
+    out.iterations = mIterations;
+    gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, samples);
+    out.layers = std::move(estimate.layers);
+    out.nonFiniteSamples = estimate.nonFiniteSamples;
+    out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
+    out.counters.emplace_back("atlas_texels", double(g.texelCount));
+    out.counters.emplace_back("atlas_charts", double(g.atlas.stats.charts));
+    out.counters.emplace_back("atlas_degenerate_triangles", double(g.tables.degenerateTriangles));
+    out.counters.emplace_back("bundle_nodes_last", double(g.nodesLast));
+    out.counters.emplace_back("bundle_rebuilds", double(g.rebuilds));
+    return out;
+}
+
+AtlasMode::TexelRadiance AtlasMode::readTexels() const {
+    if (!mGpu) {
+        throw Error("atlas: readTexels() before setScene()");
+    }
+    const Gpu& g = *mGpu;
+    const std::size_t slots = shader::kAtlasSides * g.texelCount;
+    std::vector<glm::vec4> sums(2 * slots);
+    g.sums.download(*mContext, sums.data(), sums.size() * sizeof(glm::vec4));
+    TexelRadiance out;
+    out.reflected.resize(slots);
+    for (std::size_t s = 0; s < slots; ++s) {
+        out.reflected[s] = mIterations > 0 ? glm::vec3(sums[2 * s] + sums[2 * s + 1]) * float(1.0 / mTotalWeight)
+                                           : glm::vec3(0.0f);
+    }
+    for (const shader::AtlasTexel& t : g.tables.texels) {
+        out.emission.push_back(t.emission);
+        out.area.push_back(t.inverseArea > 0.0f ? 1.0f / t.inverseArea : 0.0f);
+    }
+    return out;
+}
+
+PassTimes AtlasMode::timings() const { return mGpu ? mGpu->timer.totals() : PassTimes{}; }
+
+} // namespace bl

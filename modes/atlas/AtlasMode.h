@@ -1,0 +1,117 @@
+// Mode `atlas`: diffuse global illumination by radiance exchange in a texture atlas along global
+// ray-bundles ([HHGM10] Hermes, Henrich, Grosch, Mueller, VMV 2010; EQUATIONS.md sections 1 and 4;
+// papers/hermes-2010.md).
+//
+// Discretization. Every surface is a set of atlas texels (core/atlas); each texel T stands for the
+// surface whose atlas uv falls in it (area A_T, exact: modes/atlas/AtlasTables.h) and keeps one
+// outgoing radiance per side (front, back: reflection is two-sided, emission front only), assumed
+// constant over T and over directions (Lambertian).
+//
+// One iteration = one global direction omega (Halton by default). The bundle along omega is built
+// with the hit payload and depth-sorted: consecutive hits y, x of a pixel's list are consecutive
+// surface crossings of the pixel's ray, so they see each other, y along +omega and x along -omega.
+// Each pair exchanges radiance both ways ([HHGM10] Eq. 3); the first hit's -omega side and the last
+// hit's +omega side see the environment (when the scene has one).
+//
+// Estimator. The reflected radiance of side s of T is the area average
+//   L_r(T) = 1/A_T  int_T  int_{H_s} (rho/pi) L_in(x, w) cos(theta) dw dA(x).
+// The direction w = +-omega on H_s has density p_r = 1/(2 pi) (uniform omega; either sign serves
+// one hemisphere), so one direction gives int_{H_s} ... dw ~ (rho/pi) L_in cos / p_r. The bundle
+// samples the surface with parallel rays a_pix = pixelSize^2 apart: the ray of a pixel stands for
+// the surface area a_pix / |cos| around its hit, so int_T g dA ~ sum over the pixels hitting T of
+// g a_pix / |cos|. The cosines cancel:
+//   L_r(T) ~ sum_{pixels p hitting side s of T} rho_T L_sender(p) a_pix / (pi p_r A_T)
+// = 2 rho_T a_pix / A_T per pixel for uniform directions, the quantity the exchange pass adds to
+// T (its "received" atlas). Averaged over N directions (the grid's phase is random through the
+// frame's random rotation about omega), the expected pixel count times a_pix is A_T |cos| averaged,
+// and the mean is unbiased for the area average given L_sender. Every direction counts for every
+// texel, hit or not: the estimate is sum / N.
+//
+// Interleaved transfer (Gauss-Seidel, their default): after every direction the sender atlas
+// becomes emission + the current estimate, so direction i sends light of up to i bounces. The
+// first directions therefore carry fewer bounces, and a plain mean over n directions keeps their
+// deficit: it is a stochastic fixed-point iteration with step 1/n, whose deficit decays only as
+// n^-(1 - rho) (rho: the scene's effective reflectance; the furnace, rho = 1/2, lacks 2.1% after
+// 256 directions, measured). The estimate is therefore a weighted mean, direction j weighted
+// w_j = j^k (`weighting` = k): the deficit decays as n^-((k + 1)(1 - rho)) (furnace, k = 2:
+// n^-1.5), at the price of an effective sample count n (2k + 1) / (k + 1)^2 (k = 2: 0.56 n).
+// k = 0 is the plain mean.
+//
+// Camera view. The mode's own raster (AtlasViewPass) gives each pixel its atlas uv, page and side;
+// the shade pass adds the emission seen (G-buffer, front faces), the environment behind the scene
+// and the reflected radiance of that texel side, bilinear between texel centres of the same chart.
+// The atlas is view-independent: resolve() renders view_samples jittered samples per pixel of the
+// current atlas (a box filter) into a fresh accumulator; nothing of earlier resolves is kept.
+//
+// Limits (the plan says so): diffuse only (a glossy material's Phong lobe is ignored: its albedo
+// only), point and spot lights are not lit (no shadow maps into the atlas yet), textured albedo is
+// taken per texel at its sample point, path-length layers are not separated (all reflected light
+// is in layer `rest`). Overflow: a direction whose bundle did not fit grows the pool and is built
+// again; what the device cannot hold is refused with the numbers.
+//
+// Parameters (`bundlelab modes`):
+//   atlas_resolution   512     texels     side of an atlas page (the density follows from the scene's area)
+//   bundle_resolution  512     pixels     side of each direction's bundle (frame over the bounding sphere)
+//   directions         halton             halton, random or stratified directions on the sphere
+//   strata             1024    directions directions per pass of the stratified sequence
+//   weighting          2                  k: direction j weighs j^k in the mean (0: plain mean)
+//   view_samples       16      samples    jittered camera samples per pixel at resolve
+//   bilinear           true               bilinear lookups between texel centres inside a chart
+//   memory_cap_mib     0       MiB        node storage limit of the bundle pool (0: half the largest
+//                                         device-local heap)
+#pragma once
+
+#include "modes/Mode.h"
+
+#include <memory>
+
+namespace bl {
+
+class AtlasMode final : public Mode {
+public:
+    static constexpr const char* kAtlasResolution = "atlas_resolution";
+    static constexpr const char* kBundleResolution = "bundle_resolution";
+    static constexpr const char* kDirections = "directions";
+    static constexpr const char* kStrata = "strata";
+    static constexpr const char* kWeighting = "weighting";
+    static constexpr const char* kViewSamples = "view_samples";
+    static constexpr const char* kBilinear = "bilinear";
+    static constexpr const char* kMemoryCap = "memory_cap_mib";
+
+    static std::vector<ParamSpec> parameters();
+    static std::unique_ptr<Mode> create(const Settings& settings);
+
+    explicit AtlasMode(const Settings& settings);
+    ~AtlasMode() override;
+
+    std::string_view name() const override { return "atlas"; }
+    void setScene(const Scene& scene, vk::Context* gpu) override;
+    void iterate(const IterationInfo& info) override;
+    ImageSet resolve() override;
+    const Settings& settings() const override { return mSettings; }
+    PassTimes timings() const override;
+    std::vector<PlannedPass> plan(const Scene& scene) const override;
+
+    // The reflected radiance of every texel side, weighted sum / total weight (rgb; index 2 * texel + side),
+    // and the texels' emission: tests check the atlas itself (the furnace: every texel -> 2).
+    struct TexelRadiance {
+        std::vector<glm::vec3> reflected;
+        std::vector<glm::vec3> emission;
+        std::vector<float> area; // preimage area of each texel, 0 where no surface maps
+    };
+    TexelRadiance readTexels() const;
+
+private:
+    struct Gpu;
+    void buildBundle(const IterationInfo& info);
+
+    Settings mSettings;
+    const Scene* mScene = nullptr;
+    vk::Context* mContext = nullptr;
+    std::unique_ptr<Gpu> mGpu;
+    std::uint32_t mIterations = 0;
+    double mTotalWeight = 0.0; // sum of w_j over the directions done
+    double mTime = 0.0; // scene time of the last direction: the view renders the scene there
+};
+
+} // namespace bl

@@ -1,0 +1,23 @@
+// Buffer references of mode atlas (shaders/modes/atlas/AtlasShared.h) and the texel a bundle hit
+// or camera sample falls in.
+#ifndef BL_ATLAS_BUFFERS_GLSL
+#define BL_ATLAS_BUFFERS_GLSL
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+#include "modes/atlas/AtlasShared.h"
+
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer AtlasTexels { AtlasTexel texels[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer AtlasTriangles { AtlasTriangle triangles[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer AtlasRadiance { vec4 radiance[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer AtlasReceived { uint words[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer AtlasDirectionBlock { AtlasDirection direction; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer AtlasCharts { int charts[]; };
+
+// Index of the texel that atlas uv `uv` (in [0, 1] of `page`) falls in: floor(uv * size), the same
+// rule the host's texel areas (modes/atlas/AtlasTables.h) integrate over.
+uint blAtlasTexelIndex(vec2 uv, uint page, uint width, uint height) {
+    ivec2 texel = clamp(ivec2(floor(uv * vec2(width, height))), ivec2(0), ivec2(width, height) - 1);
+    return (page * height + uint(texel.y)) * width + uint(texel.x);
+}
+
+#endif

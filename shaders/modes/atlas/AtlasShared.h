@@ -1,0 +1,114 @@
+// Host/device definitions of mode atlas (modes/atlas/AtlasMode.h): the texel and triangle tables,
+// the per-direction parameters and the push constants of its compute passes and view raster.
+// Every buffer is reached by device address, so the atlas can be any size without bindings.
+#ifndef BL_ATLAS_SHARED_H
+#define BL_ATLAS_SHARED_H
+#include "../../shared/Accumulation.h"
+#include "../../shared/BundleTypes.h"
+
+BL_NAMESPACE_BEGIN
+
+// Radiance is stored per texel and per side of the surface: reflection is two-sided, so the two
+// sides of a thin wall see different light, and one value per texel would leak it through.
+// Side 0 is the front (the side its counter-clockwise corners face; the only side that emits).
+BL_CONST uint kAtlasSides = 2u;
+BL_CONST uint kAtlasFront = 0u;
+BL_CONST uint kAtlasBack = 1u;
+
+// What the exchange needs of texel t (index (page * height + y) * width + x).
+struct AtlasTexel {
+    vec3 emission;     // radiance emitted from the front side
+    float inverseArea; // 1 / world area of the surface whose atlas uv falls in the texel; 0: none
+    vec3 albedo;       // Lambertian reflectance
+    uint pad0;
+};
+BL_STATIC_ASSERT(sizeof(AtlasTexel) == 32, "AtlasTexel layout");
+
+// Atlas uv (in [0, 1] of its page) of the corners of one GpuScene triangle, in drawing order:
+// a bundle hit's barycentrics (b1, b2) give uv = (1 - b1 - b2) uv0 + b1 uv1 + b2 uv2.
+struct AtlasTriangle {
+    vec2 uv0;
+    vec2 uv1;
+    vec2 uv2;
+    uint page;
+    uint pad0;
+};
+BL_STATIC_ASSERT(sizeof(AtlasTriangle) == 32, "AtlasTriangle layout");
+
+// Parameters of one direction, written by the host before its submission.
+struct AtlasDirection {
+    vec3 environmentForward;  // environment radiance arriving from +omega (escapes past a list's end)
+    float weight;             // a_pix / (pi p_r): bundle pixel area over (pi x hemisphere density)
+    vec3 environmentBackward; // arriving from -omega (escapes before a list's first hit)
+    uint pad0;
+};
+BL_STATIC_ASSERT(sizeof(AtlasDirection) == 32, "AtlasDirection layout");
+
+// Exchange pass: one invocation per bundle pixel walks its sorted list.
+struct AtlasExchangePush {
+    BundlePoolView pool;
+    uvec2 texels;     // AtlasTexel[]
+    uvec2 triangles;  // AtlasTriangle[] per GpuScene triangle
+    uvec2 sender;     // vec4 per texel side: radiance leaving it (emission + reflected estimate)
+    uvec2 received;   // uint[4] per texel side: this direction's reflected radiance (float bits, CAS adds)
+    uvec2 direction;  // AtlasDirection
+    uint width;       // atlas page
+    uint height;
+    uint pages;
+    uint pad0;
+    uint pad1;
+    uint pad2;
+};
+BL_STATIC_ASSERT(sizeof(AtlasExchangePush) == 128, "AtlasExchangePush layout");
+
+// Update pass: one invocation per texel side folds the direction's received radiance into the
+// compensated sum over directions and rewrites the sender.
+struct AtlasUpdatePush {
+    uvec2 texels;
+    uvec2 sender;
+    uvec2 received;
+    uvec2 sums;       // vec4[2] per texel side: sum over directions and its Neumaier compensation
+    uint texelCount;  // width * height * pages
+    float weight;     // w_j of this direction in the weighted mean (AtlasMode.h: weighting)
+    float inverseTotalWeight; // 1 / sum of w over the directions so far, this one included
+    uint clearSums;   // 1: start the sums over (this direction is the first)
+};
+BL_STATIC_ASSERT(sizeof(AtlasUpdatePush) == 48, "AtlasUpdatePush layout");
+
+// View raster: the camera's visible surface with its atlas uv, page and side.
+struct AtlasViewPush {
+    mat4 viewProj; // the camera's, with the sample's sub-pixel jitter folded in
+    mat4 model;    // the mesh's rigid transform at the scene time
+};
+BL_STATIC_ASSERT(sizeof(AtlasViewPush) == 128, "AtlasViewPush layout");
+
+// Shade pass: per camera pixel, the emission seen plus the reflected radiance of its texel side.
+struct AtlasShadePush {
+    uvec2 sums;            // vec4[2] per texel side (update pass)
+    uvec2 texels;          // AtlasTexel[]: texels without area never receive (bilinear skips them)
+    uvec2 charts;          // int per texel: bilinear lookups stay inside the sample's chart
+    uint width;            // camera image
+    uint height;
+    uint atlasWidth;
+    uint atlasHeight;
+    float reflectedScale;  // 1 / total weight of the directions summed (0: nothing reflected yet)
+    uint bilinear;         // 1: bilinear between texel centres inside the chart, 0: the texel alone
+    vec2 samplePosition;   // sub-pixel camera sample, for background rays
+    uint environmentPresent;
+    float environmentRotation;
+};
+BL_STATIC_ASSERT(sizeof(AtlasShadePush) == 64, "AtlasShadePush layout");
+
+BL_CONST uint kAtlasGroupSize = 64u;     // 1D passes (bundle pixels, texel sides)
+BL_CONST uint kAtlasViewGroupSize = 8u;  // 2D shade pass
+
+// The view pass's attachment: (u, v, page, side + 1); w = 0 where the camera ray escaped.
+BL_CONST uint kAtlasViewSet = 1u;
+BL_CONST uint kAtlasViewBinding = 0u;    // storage image rgba32f, the view attachment
+
+// Layers: emitters and the environment seen directly (1 segment) in `emitted`; the atlas does not
+// separate path lengths, so all reflected light (2 segments and more) goes to `rest`.
+BL_CONST uint kAtlasAccumLayers = (1u << kPathEmitted) | (1u << kPathRest);
+
+BL_NAMESPACE_END
+#endif
