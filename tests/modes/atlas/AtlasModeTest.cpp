@@ -97,3 +97,19 @@ TEST_F(Atlas, CornellMatchesReference) {
     EXPECT_LT(m.blockRatios.rms, 0.22);
     EXPECT_LT(m.relMse, 0.035);
 }
+
+// A constant white sky over blocks: light enters only where a list ends (the ray leaves the scene).
+// The mode is diffuse only, so the glossy block's lobe is removed for both renderers.
+TEST_F(Atlas, EnvironmentAtListEndsMatchesReference) {
+    Scene s = loadSmall("data/analytic/ao-blocks.toml", 32);
+    for (Material& m : s.materials) m.specular = glm::vec3(0.0f);
+    std::unique_ptr<Mode> mode = run(s, 512, {"atlas_resolution=256", "bundle_resolution=256", "view_samples=4"});
+    ImageSet test = mode->resolve();
+    ImageSet reference = bl::test::renderReference(s, 512);
+    MetricOptions options;
+    options.blockSize = 16;
+    ImageMetrics m = computeMetrics(test.radiance(), reference.radiance(), options);
+    std::printf("sky: mean ratio %.4f %.4f %.4f  block ratio rms %.4f relmse %.5f\n", m.meanRatio.x, m.meanRatio.y,
+                m.meanRatio.z, m.blockRatios.rms, m.relMse);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(m.meanRatio[c], 1.0, 0.02) << "channel " << c;
+}
