@@ -76,8 +76,12 @@ missing_file)
     expect_error "$bl" render nothere.toml --mode raster --out "$out/x.exr"
     ;;
 unknown_mode)
-    expected="unknown mode 'rasterr' (available: raster"
+    expected="unknown mode 'rasterr' (available: "
     expect_error "$bl" render data/cornell-box/cornell.toml --mode rasterr --out "$out/x.exr"
+    # the list names the real modes, whatever their order
+    for m in raster reference skylight; do
+        grep -qE "available: .*\b$m\b" "$out/stderr.txt" || fail "mode list lacks $m"
+    done
     ;;
 unknown_parameter)
     expected="mode raster: unknown parameter 'shadow_res'"
