@@ -1,5 +1,7 @@
 // Visibility from cube shadow maps (core/gpu/ShadowCubePass.h): 4x4 PCF with a receiver-plane depth
-// test. Define BL_SHADOW_SET and BL_SHADOW_BINDING (where the maps are bound) before including.
+// test. Define BL_SHADOW_SET and BL_SHADOW_BINDING (where the maps are bound) before including;
+// a shader that reads a second cube image of another resolution (e.g. lights' cubes and VPLs'
+// cubes) also defines BL_SHADOW_BINDING_2 and passes map 1 to blShadowVisibilityIn.
 // A cube occupies six consecutive layers (CubeFaces.h order) starting at `firstLayer`: 6 l for
 // light l, or any cube ShadowCubePass::record(cmd, position, cube, ...) rendered (e.g. a VPL).
 #ifndef BL_GPU_SHADOW_CUBE_LOOKUP_GLSL
@@ -7,6 +9,9 @@
 #include "shared/CubeFaces.h"
 
 layout(set = BL_SHADOW_SET, binding = BL_SHADOW_BINDING, r32f) uniform readonly image2DArray blShadowMaps;
+#ifdef BL_SHADOW_BINDING_2
+layout(set = BL_SHADOW_SET, binding = BL_SHADOW_BINDING_2, r32f) uniform readonly image2DArray blShadowMaps2;
+#endif
 
 // Relative tolerance of the shadow test (receiver-plane depth against the stored distance). The
 // receiver's own distance is reproduced to float precision (~1e-6) for planar receivers; 1e-3
@@ -28,11 +33,23 @@ vec2 blShadowFaceTexel(vec3 d, uint face, float resolution) {
     return vec2(xy.x + 1.0, 1.0 - xy.y) * (0.5 * resolution);
 }
 
-// Fraction of the PCF taps that see the cube's centre from receiver point p (relative to the
+// The stored distance of texel `texel` of layer `layer` of map 0 (BL_SHADOW_BINDING) or map 1
+// (BL_SHADOW_BINDING_2). A branch, not an image array: arrays of storage images indexed by a
+// non-constant need shaderStorageImageArrayDynamicIndexing, which lavapipe lacks.
+float blShadowStored(uint map, ivec2 texel, uint layer) {
+#ifdef BL_SHADOW_BINDING_2
+    if (map != 0u) {
+        return imageLoad(blShadowMaps2, ivec3(texel, int(layer))).r;
+    }
+#endif
+    return imageLoad(blShadowMaps, ivec3(texel, int(layer))).r;
+}
+
+// Fraction of the PCF taps of map `map` that see the cube's centre from receiver point p (relative to the
 // centre) with normal n. Each tap compares the stored distance along its texel's centre ray with
 // the distance at which that same ray meets the receiver's tangent plane, so a planar receiver
 // never shadows itself and no scale-dependent bias is needed.
-float blShadowVisibility(uint firstLayer, uint resolution, vec3 p, vec3 n) {
+float blShadowVisibilityIn(uint map, uint firstLayer, uint resolution, vec3 p, vec3 n) {
     const float res = float(resolution);
     uint face = blCubeFaceOf(p);
     vec3 r, u, f;
@@ -59,11 +76,16 @@ float blShadowVisibility(uint firstLayer, uint resolution, vec3 p, vec3 n) {
                 continue;
             }
             float receiver = dot(p, n) / denom;
-            float stored = imageLoad(blShadowMaps, ivec3(texel, int(firstLayer + tapFace))).r;
+            float stored = blShadowStored(map, texel, firstLayer + tapFace);
             lit += stored >= receiver * (1.0 - kShadowRelativeBias) ? 1.0 : 0.0;
         }
     }
     return lit / float(kShadowPcfTaps * kShadowPcfTaps);
+}
+
+// The same on map 0 (the only one unless BL_SHADOW_BINDING_2 is defined).
+float blShadowVisibility(uint firstLayer, uint resolution, vec3 p, vec3 n) {
+    return blShadowVisibilityIn(0u, firstLayer, resolution, p, n);
 }
 
 #endif

@@ -20,49 +20,16 @@
 #include "gpu/CameraSet.glsl"
 #define BL_SHADOW_SET kBidirSet
 #define BL_SHADOW_BINDING kBidirBindingShadowMaps
+#define BL_SHADOW_BINDING_2 kBidirBindingVplMaps
 #include "gpu/ShadowCubeLookup.glsl"
 
 layout(local_size_x = kBidirGroupSize, local_size_y = kBidirGroupSize) in;
 
 layout(set = kBidirSet, binding = kBidirBindingLights) readonly buffer LightBlock { GpuLight lights[]; };
-layout(set = kBidirSet, binding = kBidirBindingVplMaps, r32f) uniform readonly image2DArray vplMaps;
 layout(set = kBidirSet, binding = kBidirBindingVpls) readonly buffer VplBlock { BidirVpl vpls[]; };
 layout(push_constant) uniform PushBlock { BidirPush push; };
 
-// The same 4x4 PCF as blShadowVisibility, on the VPL cubes' image (a second binding: the lookup
-// file binds one image). Fraction of taps that see the cube centre from p (relative to it).
-float vplVisibility(uint cube, vec3 p, vec3 n) {
-    const float res = float(push.vplResolution);
-    uint face = blCubeFaceOf(p);
-    vec2 st = blShadowFaceTexel(p, face, res);
-    const float centre = 0.5 * float(kShadowPcfTaps - 1);
-    vec3 r, u, f;
-    blCubeFaceBasis(face, r, u, f);
-    float lit = 0.0;
-    for (int j = 0; j < kShadowPcfTaps; ++j) {
-        for (int i = 0; i < kShadowPcfTaps; ++i) {
-            vec2 tap = st + vec2(float(i) - centre, float(j) - centre);
-            vec2 xy = vec2(tap.x / res * 2.0 - 1.0, 1.0 - tap.y / res * 2.0);
-            vec3 dir = f + xy.x * r + xy.y * u;
-            uint tapFace = blCubeFaceOf(dir);
-            vec2 tapSt = tapFace == face ? tap : blShadowFaceTexel(dir, tapFace, res);
-            ivec2 texel = clamp(ivec2(floor(tapSt)), ivec2(0), ivec2(int(push.vplResolution) - 1));
-            vec3 tr, tu, tf;
-            blCubeFaceBasis(tapFace, tr, tu, tf);
-            vec2 c = (vec2(texel) + 0.5) / res * 2.0 - 1.0;
-            vec3 centreRay = normalize(tf + c.x * tr - c.y * tu);
-            float denom = dot(centreRay, n);
-            if (denom >= -kShadowParallelCosine) {
-                lit += 1.0;
-                continue;
-            }
-            float receiver = dot(p, n) / denom;
-            float stored = imageLoad(vplMaps, ivec3(texel, int(kShadowCubeFaces * cube + tapFace))).r;
-            lit += stored >= receiver * (1.0 - kShadowRelativeBias) ? 1.0 : 0.0;
-        }
-    }
-    return lit / float(kShadowPcfTaps * kShadowPcfTaps);
-}
+const uint kBidirMapVpl = 1u; // blShadowVisibilityIn's map 1: the VPLs' cubes (map 0: the lights')
 
 // Light l's direct light reflected at point p (normal n turned toward wo) toward wo, by its shadow
 // cube; with the light ray's solid-angle density P(l) p_e and geometry when asked (MIS).
@@ -106,7 +73,7 @@ vec3 vplTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
     if (cosX <= 0.0 || cosY <= 0.0) {
         return vec3(0.0);
     }
-    float visibility = vplVisibility(k, x - v.cubeCentre, n);
+    float visibility = blShadowVisibilityIn(kBidirMapVpl, kShadowCubeFaces * k, push.vplResolution, x - v.cubeCentre, n);
     if (visibility <= 0.0) {
         return vec3(0.0);
     }
