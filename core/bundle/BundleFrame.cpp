@@ -3,6 +3,7 @@
 #include "base/Error.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <shared/Frame.h>
@@ -33,6 +34,8 @@ shader::BundleFrame makeFrame(const glm::vec3& direction, const glm::vec3& axisX
     f.pixelSize = pixelSize;
     f.width = width;
     f.height = height;
+    f.gridWidth = width;
+    f.gridHeight = height;
     // origin: the frame's corner, on the plane through the sphere centre (depth measured from it).
     const glm::vec3 c = sceneCenter;
     f.origin = c + (lo.x - glm::dot(c, axisX)) * axisX + (lo.y - glm::dot(c, axisY)) * axisY;
@@ -80,17 +83,30 @@ shader::BundleFrame bundleFrameForPoints(const glm::vec3& direction, float rotat
 
 shader::BundleFrame bundleTile(const shader::BundleFrame& frame, std::uint32_t x0, std::uint32_t y0,
                                std::uint32_t width, std::uint32_t height) {
+    if (x0 + width > frame.width || y0 + height > frame.height || width == 0 || height == 0) {
+        throw Error("bundle tile: " + std::to_string(width) + "x" + std::to_string(height) + " at " +
+                    std::to_string(x0) + "," + std::to_string(y0) + " outside its " + std::to_string(frame.width) +
+                    "x" + std::to_string(frame.height) + " frame");
+    }
+    // The origin stays: a shifted origin (origin + x0 pixelSize axisX in float) rounds differently
+    // from the whole frame, and border points fell into no tile or two (defect 3).
     shader::BundleFrame t = frame;
-    t.origin = frame.origin + float(x0) * frame.pixelSize * frame.axisX + float(y0) * frame.pixelSize * frame.axisY;
+    t.tileX = frame.tileX + x0;
+    t.tileY = frame.tileY + y0;
     t.width = width;
     t.height = height;
     return t;
 }
 
+VkViewport bundleViewport(const shader::BundleFrame& frame) {
+    return {-float(frame.tileX), -float(frame.tileY), float(std::bit_ceil(std::max(frame.gridWidth, 1u))),
+            float(std::bit_ceil(std::max(frame.gridHeight, 1u))), 0.0f, 1.0f};
+}
+
 glm::vec3 bundleProject(const shader::BundleFrame& frame, const glm::vec3& p) {
     glm::vec3 rel = p - frame.origin;
-    return {glm::dot(rel, frame.axisX) / frame.pixelSize, glm::dot(rel, frame.axisY) / frame.pixelSize,
-            glm::dot(rel, frame.direction)};
+    return {glm::dot(rel, frame.axisX) / frame.pixelSize - float(frame.tileX),
+            glm::dot(rel, frame.axisY) / frame.pixelSize - float(frame.tileY), glm::dot(rel, frame.direction)};
 }
 
 } // namespace bl

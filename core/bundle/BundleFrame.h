@@ -5,6 +5,7 @@
 #include "base/Bounds.h"
 
 #include <glm/glm.hpp>
+#include <vulkan/vulkan.h>
 #include <shared/BundleTypes.h>
 #include <vector>
 
@@ -28,11 +29,17 @@ shader::BundleFrame bundleFrameForSphere(const glm::vec3& direction, float rotat
 shader::BundleFrame bundleFrameForPoints(const glm::vec3& direction, float rotation, const std::vector<glm::vec3>& points,
                                          const glm::vec3& sceneCenter, float sceneRadius, std::uint32_t resolution);
 
-// The sub-frame of pixels [x0, x0 + width) x [y0, y0 + height).
+// The sub-frame of pixels [x0, x0 + width) x [y0, y0 + height): the same origin and an integer
+// offset (tileX, tileY), so a tile projects every point exactly as its frame does.
 shader::BundleFrame bundleTile(const shader::BundleFrame& frame, std::uint32_t x0, std::uint32_t y0,
                                std::uint32_t width, std::uint32_t height);
 
-// Continuous pixel coordinates and depth of point p in the frame.
+// The viewport a build of the frame (or tile) rasterizes with: the whole grid's, sized to powers of
+// two and placed at minus the tile's offset, so clip -> window is exact and every tile clips as
+// the whole frame (shaders/bundle/Projection.glsl, blBundleClipPosition).
+VkViewport bundleViewport(const shader::BundleFrame& frame);
+
+// Continuous pixel coordinates (of the tile, for a tile) and depth of point p in the frame.
 glm::vec3 bundleProject(const shader::BundleFrame& frame, const glm::vec3& p);
 
 } // namespace bl

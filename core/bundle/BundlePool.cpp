@@ -2,6 +2,7 @@
 
 #include "base/Error.h"
 #include "vk/Check.h"
+#include "bundle/BundleFrame.h"
 #include "vk/Commands.h"
 
 #include <algorithm>
@@ -188,6 +189,16 @@ void BundlePool::checkSlot(std::uint32_t slot, const shader::BundleFrame& frame)
         throw Error("bundle pool: a " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
                     " frame does not fit a slot of " + std::to_string(mOptions.slotPixels) + " pixels");
     }
+    const VkViewport v = bundleViewport(frame);
+    const std::uint32_t* maxViewport = mContext->limits().maxViewportDimensions;
+    if (frame.tileX + frame.width > frame.gridWidth || frame.tileY + frame.height > frame.gridHeight ||
+        v.width > float(maxViewport[0]) || v.height > float(maxViewport[1])) {
+        throw Error("bundle pool: a " + std::to_string(frame.width) + "x" + std::to_string(frame.height) + " tile at " +
+                    std::to_string(frame.tileX) + "," + std::to_string(frame.tileY) + " of a " +
+                    std::to_string(frame.gridWidth) + "x" + std::to_string(frame.gridHeight) +
+                    " grid: outside the grid, or a grid beyond the device's viewport (" +
+                    std::to_string(maxViewport[0]) + "x" + std::to_string(maxViewport[1]) + ")");
+    }
 }
 
 void BundlePool::recordReset(VkCommandBuffer cmd) const {
@@ -229,6 +240,7 @@ void BundlePool::recordTriangles(VkCommandBuffer cmd, std::uint32_t slot, const 
                       VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
     vk::RenderTargets targets;
     targets.extent = {frame.width, frame.height};
+    targets.viewport = bundleViewport(frame);
     vk::beginRendering(cmd, targets);
     shader::BundleDrawPush push{};
     push.frameAddress = splitAddress(deviceAddress(*mContext, mFrames) + frameOffset);

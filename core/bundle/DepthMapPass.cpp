@@ -1,9 +1,10 @@
 #include "bundle/DepthMapPass.h"
 
+#include "bundle/BundleFrame.h"
 #include "vk/Commands.h"
 
-#include <bundle/build.vert.spv.h>
 #include <bundle/depth_map.frag.spv.h>
+#include <bundle/depth_map.vert.spv.h>
 #include <limits>
 
 namespace bl {
@@ -26,10 +27,9 @@ DepthMapPass::DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, s
     mSet = mPool.allocate(mSetLayout.get());
     vk::DescriptorWriter().buffer(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, mFrame.get()).update(device, mSet);
     VkDescriptorSetLayout layouts[] = {mSetLayout.get()};
-    mPipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BundleBuildPush),
-                                             stages | VK_SHADER_STAGE_COMPUTE_BIT);
+    mPipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BundleDepthMapPush), VK_SHADER_STAGE_VERTEX_BIT);
     vk::GraphicsPipelineDesc desc;
-    desc.vertexShader = kSpv_bundle_build_vert;
+    desc.vertexShader = kSpv_bundle_depth_map_vert;
     desc.fragmentShader = kSpv_bundle_depth_map_frag;
     desc.vertexBindings = gpu::GpuScene::vertexBindings();
     desc.vertexAttributes = gpu::GpuScene::vertexAttributes();
@@ -51,16 +51,15 @@ void DepthMapPass::record(VkCommandBuffer cmd, const shader::BundleFrame& frame,
     targets.depth = mDepth.view();
     targets.clearDepth = 0.0f;
     targets.extent = {frame.width, frame.height};
+    targets.viewport = bundleViewport(frame);
     vk::beginRendering(cmd, targets);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipeline.get());
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipelineLayout.get(), 0, 1, &mSet, 0, nullptr);
     mScene->bindGeometry(cmd);
-    shader::BundleBuildPush push{};
+    shader::BundleDepthMapPush push{};
     for (const gpu::GpuDraw& d : mScene->draws()) {
         push.model = mScene->modelMatrix(d.mesh, time);
-        vkCmdPushConstants(cmd, mPipelineLayout.get(),
-                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                           sizeof(push), &push);
+        vkCmdPushConstants(cmd, mPipelineLayout.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
         vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
     }
     vkCmdEndRendering(cmd);

@@ -74,6 +74,9 @@ void beginRendering(VkCommandBuffer cmd, const RenderTargets& targets) {
     info.pDepthAttachment = targets.depth ? &depth : nullptr;
     vkCmdBeginRendering(cmd, &info);
     VkViewport viewport{0.0f, 0.0f, float(targets.extent.width), float(targets.extent.height), 0.0f, 1.0f};
+    if (targets.viewport.width > 0.0f) {
+        viewport = targets.viewport;
+    }
     VkRect2D scissor{{0, 0}, targets.extent};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);

@@ -28,13 +28,15 @@ ImageTransition toDepthAttachment();
 ImageTransition colorAttachmentToGeneral();
 
 // Dynamic rendering into colour attachments (all cleared to `clearColor`) and an optional depth
-// attachment (cleared to `clearDepth`, not stored), with viewport and scissor covering `extent`.
+// attachment (cleared to `clearDepth`, not stored), with the scissor covering `extent` and the
+// viewport covering `extent`, or `viewport` when its width is not zero.
 struct RenderTargets {
     std::vector<VkImageView> colors;
     VkClearColorValue clearColor{};
     VkImageView depth = VK_NULL_HANDLE;
     float clearDepth = 0.0f; // reversed depth: 0 is infinitely far
     VkExtent2D extent{};
+    VkViewport viewport{}; // beyond `extent`: the part outside is scissored away
 };
 void beginRendering(VkCommandBuffer cmd, const RenderTargets& targets);
 

@@ -8,6 +8,7 @@
 //   BL_COUNT_ONLY           the benchmark floor: allocate (count) and store nothing
 // A fragment that finds the pool full is counted, never stored (BundleTypes.h: BundleCounters).
 #include "bundle/BundleBuffers.glsl"
+#include "bundle/Projection.glsl"
 #include "shared/GpuTypes.h"
 #include "shared/Octahedral.h"
 #ifdef BL_SUBGROUP_ALLOCATION
@@ -74,9 +75,7 @@ uint allocateNode(BundleCounterBlock block, bool live) {
 }
 
 // The pixel centre's ray (at depth 0) in world space.
-vec3 pixelRay(BundleFrame frame) {
-    return frame.origin + gl_FragCoord.x * frame.pixelSize * frame.axisX + gl_FragCoord.y * frame.pixelSize * frame.axisY;
-}
+vec3 pixelRay(BundleFrame frame) { return blBundlePixelRay(frame, gl_FragCoord.xy); }
 
 // Depth along omega where the ray meets the plane (n, offset): false when the ray runs inside it
 // (or the plane is degenerate: GpuScene gives such triangles a zero normal).

@@ -4,15 +4,8 @@
 #ifndef BL_BUNDLE_TRAVERSAL_GLSL
 #define BL_BUNDLE_TRAVERSAL_GLSL
 #include "bundle/BundleBuffers.glsl"
+#include "bundle/Projection.glsl"
 
-// Pixel of the frame whose ray passes nearest to p, and p's depth; false outside the frame.
-bool blBundlePixel(BundleFrame frame, vec3 p, out ivec2 pixel, out float depth) {
-    vec3 rel = p - frame.origin;
-    vec2 xy = vec2(dot(rel, frame.axisX), dot(rel, frame.axisY)) / frame.pixelSize;
-    depth = dot(rel, frame.direction);
-    pixel = ivec2(floor(xy));
-    return pixel.x >= 0 && pixel.y >= 0 && pixel.x < int(frame.width) && pixel.y < int(frame.height);
-}
 
 uint blBundleHead(BundleHeads heads, BundleFrame frame, ivec2 pixel) {
     return heads.heads[uint(pixel.y) * frame.width + uint(pixel.x)] & kBundleIndexMask;

@@ -3,24 +3,22 @@
 // Bundle build: parallel projection of one mesh along the bundle direction, no culling, no depth
 // test. The linear depth (world units along omega) travels as a varying: exact under an
 // orthographic projection.
-#include "shared/BundleTypes.h"
+#include "bundle/Projection.glsl"
 
 layout(location = 0) in vec4 inPositionU;
 layout(location = 1) in vec4 inNormalV;
 
 layout(set = 0, binding = 0) uniform FrameBlock { BundleFrame frame; };
-layout(push_constant) uniform PushBlock { BundleBuildPush push; };
+layout(push_constant) uniform PushBlock { BundleDepthMapPush push; };
 
 layout(location = 0) out float outDepth;
 layout(location = 1) out vec3 outNormal;
 
 void main() {
     vec3 world = (push.model * vec4(inPositionU.xyz, 1.0)).xyz;
-    vec3 rel = world - frame.origin;
-    float x = dot(rel, frame.axisX) / (frame.pixelSize * float(frame.width));
-    float y = dot(rel, frame.axisY) / (frame.pixelSize * float(frame.height));
-    float depth = dot(rel, frame.direction);
+    float depth;
+    vec4 clip = blBundleClipPosition(frame, world, depth);
     outDepth = depth;
     outNormal = mat3(push.model) * inNormalV.xyz;
-    gl_Position = vec4(2.0 * x - 1.0, 2.0 * y - 1.0, (depth - frame.depthNear) / (frame.depthFar - frame.depthNear), 1.0);
+    gl_Position = clip;
 }

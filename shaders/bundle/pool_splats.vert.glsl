@@ -5,6 +5,7 @@
 // buffer); the fragment shader cuts it to the circle. The tangent-plane position of the corner
 // travels as a varying (exact under an orthographic projection) for that cut.
 #include "bundle/BundleBuffers.glsl"
+#include "bundle/Projection.glsl"
 
 layout(push_constant) uniform PushBlock { BundleDrawPush push; };
 
@@ -29,15 +30,13 @@ void main() {
     vec3 bt = vec3(b, sign + n.y * n.y * a, -n.y);
     vec2 corner = kCorners[uint(gl_VertexIndex) % 3u];
     vec3 world = s.position + s.radius * (corner.x * t + corner.y * bt);
-    vec3 rel = world - frame.origin;
-    float x = dot(rel, frame.axisX) / (frame.pixelSize * float(frame.width));
-    float y = dot(rel, frame.axisY) / (frame.pixelSize * float(frame.height));
-    float depth = dot(rel, frame.direction);
+    float depth;
+    vec4 clip = blBundleClipPosition(frame, world, depth);
     outDepth = depth;
     outNormal = n;
     outDisc = corner;
     outSplat = splatIndex;
-    gl_Position = vec4(2.0 * x - 1.0, 2.0 * y - 1.0, (depth - frame.depthNear) / (frame.depthFar - frame.depthNear), 1.0);
+    gl_Position = clip;
     // A splat without a usable disc (radius not > 0, NaN, a normal far from unit) draws nothing:
     // every corner lands outside the clip volume.
     bool valid = s.radius > 0.0 && s.radius < 3.0e38 && abs(dot(n, n) - 1.0) < kBundleSplatNormalTolerance &&

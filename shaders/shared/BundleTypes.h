@@ -29,10 +29,17 @@ struct BundleFrame {
     float depthNear; // depth range of the scene: depths are mapped to [0, 1] over it for clipping
     float depthFar;
     float depthEpsilon; // world units: fragments closer than this to a point's depth are the point's own
+    // Tiles: a tile keeps its frame's origin and grid and adds the integer offset of its first
+    // pixel, so it projects and rasterizes every point exactly as the whole frame does
+    // (shaders/bundle/Projection.glsl). A whole frame: offset 0, grid = width x height.
+    uint tileX;
+    uint tileY;
+    uint gridWidth; // pixels of the whole frame
+    uint gridHeight;
     uint pad0;
     uint pad1;
 };
-BL_STATIC_ASSERT(sizeof(BundleFrame) == 80, "BundleFrame layout");
+BL_STATIC_ASSERT(sizeof(BundleFrame) == 96, "BundleFrame layout");
 
 struct BundleNode {
     float depth;
@@ -146,6 +153,10 @@ BL_STATIC_ASSERT(sizeof(BundleListStats) == 16, "BundleListStats layout");
 // shallower. 1 px * tan covers it with margin; capped, since beyond ~85 degrees the cosine weight of
 // any estimator makes the term negligible anyway.
 BL_CONST float kBundleOwnSurfacePixels = 1.0f;
+// Build vertices are snapped to 1/kBundleSubpixelGrid of a pixel in the frame's whole grid
+// (Projection.glsl): the subpixel precision of the rasterizers we know (8 bits), so the snap moves
+// nothing they would not, and tiles rasterize exactly as the whole frame.
+BL_CONST float kBundleSubpixelGrid = 256.0f;
 BL_CONST float kBundleMaxOwnSurfaceTangent = 12.0f;
 
 // Nodes a pixel's list can hold in the sort pass's local array; longer lists are sorted in place
@@ -153,20 +164,12 @@ BL_CONST float kBundleMaxOwnSurfaceTangent = 12.0f;
 BL_CONST uint kBundleSortLocalNodes = 64u;
 BL_CONST uint kBundleSortGroupSize = 64u;
 
-// Legacy: push constants of the depth-map pass (directional shadow map), which shares the bundle
-// vertex shader with its uniform frame.
-struct BundleBuildPush {
+// Push constants of the depth-map pass (a directional shadow map along omega; its frame is a
+// uniform written in the command stream).
+struct BundleDepthMapPush {
     mat4 model;
-    uvec2 headAddress;
-    uvec2 nodeAddress;
-    uvec2 payloadAddress;
-    uvec2 counterAddress;
-    uint payloadKind;
-    uint material;
-    uint firstTriangle; // global index of the draw's first triangle
-    uint vertexOffset;  // the draw's vertex offset (exact depths fetch the triangle)
 };
-BL_STATIC_ASSERT(sizeof(BundleBuildPush) == 112, "BundleBuildPush layout");
+BL_STATIC_ASSERT(sizeof(BundleDepthMapPush) == 64, "BundleDepthMapPush layout");
 
 BL_NAMESPACE_END
 #endif

@@ -2,6 +2,7 @@
 #include <cstddef>
 #include <gtest/gtest.h>
 #include <modes/raster/RasterShared.h>
+#include <shared/BundleTypes.h>
 #include <shared/GpuTypes.h>
 
 using namespace bl::shader;
@@ -33,4 +34,45 @@ TEST(StructLayout, MatchesStd430) {
     EXPECT_EQ(offsetof(RasterPush, width), 24u);
     EXPECT_LE(sizeof(GBufferPush), 128u); // the guaranteed push-constant size
     EXPECT_LE(sizeof(ShadowPush), 128u);
+}
+
+// The bundle structs shaders read through buffer references and push constants: std430 offsets
+// (vec3 aligned to 16, a struct to its largest member), so host and device agree member by member.
+TEST(StructLayout, BundleStructsMatchStd430) {
+    EXPECT_EQ(offsetof(BundleFrame, pixelSize), 12u);
+    EXPECT_EQ(offsetof(BundleFrame, axisX), 16u);
+    EXPECT_EQ(offsetof(BundleFrame, width), 28u);
+    EXPECT_EQ(offsetof(BundleFrame, axisY), 32u);
+    EXPECT_EQ(offsetof(BundleFrame, height), 44u);
+    EXPECT_EQ(offsetof(BundleFrame, direction), 48u);
+    EXPECT_EQ(offsetof(BundleFrame, depthNear), 60u);
+    EXPECT_EQ(offsetof(BundleFrame, depthFar), 64u);
+    EXPECT_EQ(offsetof(BundleFrame, depthEpsilon), 68u);
+    EXPECT_EQ(offsetof(BundleFrame, tileX), 72u);
+    EXPECT_EQ(offsetof(BundleFrame, gridWidth), 80u);
+    EXPECT_EQ(sizeof(BundleFrame), 96u); // a multiple of its 16-byte alignment: frames[] has no gaps
+    EXPECT_EQ(offsetof(BundleNode, next), 4u);
+    EXPECT_EQ(sizeof(BundleNode), 8u);
+    EXPECT_EQ(offsetof(BundleHit, material), 4u);
+    EXPECT_EQ(offsetof(BundleHit, uv), 8u);
+    EXPECT_EQ(offsetof(BundleHit, id), 16u);
+    EXPECT_EQ(offsetof(BundleHit, barycentric), 20u);
+    EXPECT_EQ(sizeof(BundleHit), 24u);
+    EXPECT_EQ(offsetof(BundleSplat, radius), 12u);
+    EXPECT_EQ(offsetof(BundleSplat, normal), 16u);
+    EXPECT_EQ(offsetof(BundleSplat, material), 28u);
+    EXPECT_EQ(sizeof(BundleSplat), 32u);
+    EXPECT_EQ(offsetof(BundleCounters, excessHigh), 12u);
+    EXPECT_EQ(offsetof(BundleDrawPush, frameAddress), 64u);
+    EXPECT_EQ(offsetof(BundleDrawPush, splatAddress), 104u);
+    EXPECT_EQ(offsetof(BundleDrawPush, payloadKind), 112u);
+    EXPECT_EQ(offsetof(BundleDrawPush, vertexOffset), 124u);
+    EXPECT_EQ(sizeof(BundleDrawPush), 128u); // the push-constant size every device guarantees
+    EXPECT_EQ(offsetof(BundlePoolView, previous), 40u);
+    EXPECT_EQ(offsetof(BundlePoolView, slotPixels), 48u);
+    EXPECT_EQ(offsetof(BundlePoolView, sorted), 60u);
+    EXPECT_EQ(offsetof(BundlePoolPush, slot), 64u);
+    EXPECT_EQ(offsetof(BundlePoolPush, statsAddress), 72u);
+    EXPECT_EQ(offsetof(BundleListStats, reachableNodes), 8u);
+    EXPECT_EQ(sizeof(BundleDepthMapPush), 64u);
 }
