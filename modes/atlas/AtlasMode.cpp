@@ -8,14 +8,17 @@
 #include "bundle/BundlePool.h"
 #include "bundle/DirectionSampler.h"
 #include "gpu/CameraPass.h"
+#include "gpu/ShadowCubePass.h"
 #include "modes/atlas/AtlasTables.h"
 #include "modes/atlas/AtlasViewPass.h"
+#include "modes/atlas/TexelSamples.h"
 #include "sampling/EnvironmentLight.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
 #include "vk/Descriptors.h"
 
 #include <modes/atlas/AtlasShared.h>
+#include <modes/atlas/direct.comp.spv.h>
 #include <modes/atlas/exchange.comp.spv.h>
 #include <modes/atlas/shade.comp.spv.h>
 #include <modes/atlas/update.comp.spv.h>
@@ -35,8 +38,9 @@ constexpr std::uint64_t kInitialNodesPerPixel = 4;
 // numbers (DirectionSampler) by distinct hash keys.
 constexpr std::uint32_t kGridKeyX = 0x68e31da4u;
 constexpr std::uint32_t kGridKeyY = 0xb5297a4du;
-// Device bytes per texel: texel table (32), sender (2 x 16), received (2 x 16), sums (2 x 32), chart (4).
-constexpr VkDeviceSize kBytesPerTexel = 32 + 32 + 32 + 64 + 4;
+// Device bytes per texel: texel table (32), sender (2 x 16), received (2 x 16), sums (2 x 32),
+// direct (2 x 16), chart (4).
+constexpr VkDeviceSize kBytesPerTexel = 32 + 32 + 32 + 64 + 32 + 4;
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                         VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
@@ -48,6 +52,17 @@ DirectionSequence sequenceOf(const std::string& name) {
 }
 
 glm::uvec2 addressOf(const vk::Context& ctx, const vk::Buffer& b) { return splitAddress(deviceAddress(ctx, b)); }
+
+// Whether any mesh or light is keyframed (a camera path alone leaves the atlas's solution valid).
+bool movesOverTime(const Scene& scene) {
+    for (const Mesh& m : scene.meshes) {
+        if (m.animation.animated()) return true;
+    }
+    for (const Light& l : scene.lights) {
+        if (l.animated()) return true;
+    }
+    return false;
+}
 } // namespace
 
 std::vector<ParamSpec> AtlasMode::parameters() {
@@ -65,6 +80,10 @@ std::vector<ParamSpec> AtlasMode::parameters() {
         {kViewSamples, std::int64_t{16}, "samples", "jittered camera samples per pixel when the atlas is viewed (resolve)",
          1, 4096, {}},
         {kBilinear, true, "", "bilinear lookups between texel centres inside a chart (else the texel alone)", 0, 0, {}},
+        {kShadowResolution, std::int64_t{512}, "texels", "side of each shadow cube face (point and spot lights)", 16, 8192,
+         {}},
+        {kLightSamples, std::int64_t{2}, "per side",
+         "n: an n x n grid of sample points per texel averages point/spot light over the texel's surface", 1, 16, {}},
         {kMemoryCap, std::int64_t{0}, "MiB",
          "node storage limit of the bundle pool (0: half the largest device-local heap); a direction that needs more is "
          "refused",
@@ -85,13 +104,16 @@ struct AtlasMode::Gpu {
     std::unique_ptr<BundlePool> pool;
     std::unique_ptr<DirectionSampler> directions;
     EnvironmentLight environment;
-    vk::Buffer texels, triangles, charts, sender, received, sums;
+    std::unique_ptr<gpu::ShadowCubePass> shadows; // only with point or spot lights
+    vk::Buffer texels, triangles, charts, sender, received, sums, directRadiance;
+    vk::Buffer samples, firstSample; // TexelSamples of the direct pass (with lights only)
     vk::Buffer direction; // AtlasDirection, host-written before each direction's submission
-    vk::PipelineLayout exchangeLayout, updateLayout, shadeLayout;
-    vk::Pipeline exchange, update, shade;
-    vk::DescriptorSetLayout viewSetLayout;
+    vk::PipelineLayout exchangeLayout, updateLayout, shadeLayout, directLayout;
+    vk::Pipeline exchange, update, shade, direct;
+    vk::DescriptorSetLayout viewSetLayout, directSetLayout;
     vk::DescriptorPool descriptorPool;
-    VkDescriptorSet viewSet = VK_NULL_HANDLE;
+    VkDescriptorSet viewSet = VK_NULL_HANDLE, directSet = VK_NULL_HANDLE;
+    atlas::AtlasLink link;
     vk::GpuTimer timer;
     Bounds bounds;
     std::uint32_t texelCount = 0;
@@ -116,9 +138,12 @@ std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {
     p.push_back({"exchange", true, exchange});
     p.push_back({"update", true, "received radiance into compensated sums per texel side; sender rewritten"});
     if (f.shadowCastingLights() > 0) {
-        p.push_back({"shadow maps", false,
-                     std::to_string(f.shadowCastingLights()) +
-                         " point/spot light(s) NOT lit: shadow maps into the atlas are not implemented yet"});
+        const auto n = std::to_string(mSettings.getInt(kLightSamples));
+        p.push_back({"shadow maps", true,
+                     std::to_string(f.shadowCastingLights()) + " point/spot light(s): one " +
+                         std::to_string(mSettings.getInt(kShadowResolution)) +
+                         "^2 cube each, once; their light averaged over " + n + "x" + n +
+                         " points per texel into a direct atlas (layer direct), the exchange's first sender"});
     } else {
         p.push_back({"shadow maps", false, "no point or spot lights"});
     }
@@ -141,6 +166,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     mIterations = 0;
     mTotalWeight = 0.0;
     mTime = 0.0;
+    mSolutionTime.reset();
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
     auto g = std::make_unique<Gpu>();
@@ -148,7 +174,8 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     atlas::AtlasOptions atlasOptions;
     atlasOptions.size = static_cast<int>(mSettings.getInt(kAtlasResolution));
     g->atlas = atlas::buildAtlas(scene, atlasOptions);
-    const atlas::AtlasLink link = atlas::linkAtlas(scene, g->atlas);
+    g->link = atlas::linkAtlas(scene, g->atlas);
+    const atlas::AtlasLink& link = g->link;
     g->tables = atlasmode::buildAtlasTables(g->atlas, link);
     g->texelCount = static_cast<std::uint32_t>(g->tables.texels.size());
     log::info("atlas: " + std::to_string(g->atlas.maps.width) + "x" + std::to_string(g->atlas.maps.height) + " x " +
@@ -158,7 +185,13 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
         log::warn("atlas: " + std::to_string(g->tables.degenerateTriangles) +
                   " triangles have no atlas area; their hits exchange nothing");
     }
-    ctx->requireDeviceMemory(VkDeviceSize(g->texelCount) * kBytesPerTexel +
+    const auto shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
+    const auto lightSamples = static_cast<VkDeviceSize>(mSettings.getInt(kLightSamples));
+    const VkDeviceSize lightBytes = scene.lights.empty()
+                                        ? 0
+                                        : shadowSide * shadowSide * 8 * 6 * scene.lights.size() +
+                                              VkDeviceSize(g->texelCount) * (lightSamples * lightSamples * 32 + 4);
+    ctx->requireDeviceMemory(VkDeviceSize(g->texelCount) * kBytesPerTexel + lightBytes +
                                  VkDeviceSize(width) * height *
                                      (gpu::CameraPass::bytesPerPixel(shader::kAtlasAccumLayers) + 16 + 4),
                              "atlas with " + std::to_string(g->texelCount) + " texels");
@@ -196,6 +229,8 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->sender = vk::makeBuffer(*ctx, std::span<const glm::vec4>(sender), kStorage);
     g->received = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(shader::kAtlasSides * texels)),
                                  kStorage);
+    g->directRadiance = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(shader::kAtlasSides * texels)),
+                               kStorage);
     g->sums = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(2 * shader::kAtlasSides * texels)),
                              kStorage);
     g->direction = vk::Buffer(*ctx, sizeof(shader::AtlasDirection),
@@ -209,8 +244,23 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->updateLayout = vk::makePipelineLayout(device, {}, sizeof(shader::AtlasUpdatePush), cs);
     g->update = vk::makeComputePipeline(device, kSpv_modes_atlas_update_comp, g->updateLayout.get());
     g->viewSetLayout = vk::makeDescriptorSetLayout(device, {{shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-    g->descriptorPool = vk::DescriptorPool(device, 1, 1);
+    g->descriptorPool = vk::DescriptorPool(device, 2, 2);
     g->viewSet = g->descriptorPool.allocate(g->viewSetLayout.get());
+    if (!scene.lights.empty()) {
+        g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
+        g->directSetLayout = vk::makeDescriptorSetLayout(
+            device, {{shader::kAtlasDirectBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                     {shader::kAtlasDirectBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
+        g->directSet = g->descriptorPool.allocate(g->directSetLayout.get());
+        vk::DescriptorWriter()
+            .buffer(shader::kAtlasDirectBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
+            .image(shader::kAtlasDirectBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->shadows->maps().view(),
+                   VK_IMAGE_LAYOUT_GENERAL)
+            .update(device, g->directSet);
+        VkDescriptorSetLayout directLayouts[] = {g->directSetLayout.get()};
+        g->directLayout = vk::makePipelineLayout(device, directLayouts, sizeof(shader::AtlasDirectPush), cs);
+        g->direct = vk::makeComputePipeline(device, kSpv_modes_atlas_direct_comp, g->directLayout.get());
+    }
     vk::DescriptorWriter()
         .image(shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->view->image().view(), VK_IMAGE_LAYOUT_GENERAL)
         .update(device, g->viewSet);
@@ -226,17 +276,17 @@ void AtlasMode::buildBundle(const IterationInfo& info) {
     Gpu& g = *mGpu;
     const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
     const BundleDirection dir = g.directions->sample(mIterations);
-    shader::BundleFrame frame = bundleFrameForSphere(dir.omega, dir.rotation, g.bounds.center(), g.bounds.radius(),
-                                                     resolution);
-    // A random sub-pixel shift of the grid, one pixel more each way: every surface point's ray is
-    // then uniformly placed within its pixel over directions (the rotation alone leaves points
-    // near the frame's axis at a fixed phase), which the per-texel pixel counts rely on.
+    // A frame of R + 1 pixels of the R-pixel frame's size (radius scaled by (R + 1) / R), shifted
+    // by a random sub-pixel offset in [-1/2, 1/2) pixel each way: it still covers the bounding
+    // sphere, and every surface point's ray is uniformly placed within its pixel over directions
+    // (the rotation alone leaves points near the frame's axis at a fixed phase), which the
+    // per-texel pixel counts rely on.
+    const float radius = g.bounds.radius() * float(resolution + 1) / float(resolution);
+    shader::BundleFrame frame = bundleFrameForSphere(dir.omega, dir.rotation, g.bounds.center(), radius, resolution + 1);
     const auto seed = static_cast<std::uint32_t>(info.seed);
-    const float jx = shader::blHashRandom(seed ^ kGridKeyX, mIterations);
-    const float jy = shader::blHashRandom(seed ^ kGridKeyY, mIterations);
+    const float jx = shader::blHashRandom(seed ^ kGridKeyX, mIterations) - 0.5f;
+    const float jy = shader::blHashRandom(seed ^ kGridKeyY, mIterations) - 0.5f;
     frame.origin -= (jx * frame.axisX + jy * frame.axisY) * frame.pixelSize;
-    frame.width += 1;
-    frame.height += 1;
 
     shader::AtlasDirection params{};
     // Radiance arriving from +omega at the last hit of a list, from -omega at the first.
@@ -268,11 +318,55 @@ void AtlasMode::buildBundle(const IterationInfo& info) {
     }
 }
 
+void AtlasMode::lightDirect(double time) {
+    Gpu& g = *mGpu;
+    if (!g.shadows) {
+        return;
+    }
+    const auto grid = static_cast<int>(mSettings.getInt(kLightSamples));
+    const atlasmode::TexelSamples samples = atlasmode::buildTexelSamples(*mScene, g.atlas, g.link, grid, time);
+    g.samples = vk::makeBuffer(*mContext, std::span<const shader::AtlasSample>(samples.samples), kStorage);
+    g.firstSample = vk::makeBuffer(*mContext, std::span<const std::uint32_t>(samples.first), kStorage);
+    g.scene->setLightTime(*mContext, time); // keyframed lights where they are at this time
+    shader::AtlasDirectPush push{};
+    push.samples = addressOf(*mContext, g.samples);
+    push.first = addressOf(*mContext, g.firstSample);
+    push.texels = addressOf(*mContext, g.texels);
+    push.direct = addressOf(*mContext, g.directRadiance);
+    push.sender = addressOf(*mContext, g.sender);
+    push.texelCount = g.texelCount;
+    push.lightCount = g.shadows->lightCount();
+    push.shadowResolution = g.shadows->resolution();
+    mContext->submitAndWait([&](VkCommandBuffer cmd) {
+        g.timer.begin(cmd);
+        g.shadows->record(cmd, time, &g.timer);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        const std::uint32_t scope = g.timer.start(cmd, "direct");
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.direct.get());
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.directLayout.get(), 0, 1, &g.directSet, 0, nullptr);
+        vkCmdPushConstants(cmd, g.directLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdDispatch(cmd, vk::groupCount(g.texelCount, shader::kAtlasGroupSize), 1, 1);
+        g.timer.stop(cmd, scope);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    });
+    g.timer.collect();
+}
+
 void AtlasMode::iterate(const IterationInfo& info) {
     if (!mGpu) {
         throw Error("atlas: iterate() before setScene()");
     }
     Gpu& g = *mGpu;
+    // The atlas holds one static solution: geometry and lights must stay where the first direction
+    // saw them (a moving camera is fine: the view is rendered at the last direction's time).
+    if (!mSolutionTime) {
+        mSolutionTime = info.time;
+        lightDirect(info.time);
+    } else if (info.time != *mSolutionTime && movesOverTime(*mScene)) {
+        throw Error("atlas: the scene's meshes or lights move (keyframes) and the scene time changed from " +
+                    std::to_string(*mSolutionTime) + " to " + std::to_string(info.time) +
+                    " s; the atlas holds one static solution: render a single scene time (--scene-time), not frames");
+    }
     if (!g.directions) {
         // The seed decorrelates runs; directions are reproducible from (settings, seed).
         g.directions = std::make_unique<DirectionSampler>(sequenceOf(mSettings.getString(kDirections)),
@@ -303,6 +397,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
     update.weight = float(weight);
     update.inverseTotalWeight = float(1.0 / (mTotalWeight + weight));
     update.clearSums = mIterations == 0 ? 1u : 0u;
+    update.direct = addressOf(*mContext, g.directRadiance);
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         std::uint32_t scope = g.timer.start(cmd, "exchange");
@@ -344,6 +439,7 @@ ImageSet AtlasMode::resolve() {
     push.bilinear = mSettings.getBool(kBilinear) ? 1u : 0u;
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
     push.environmentRotation = g.scene->environmentRotation();
+    push.direct = addressOf(*mContext, g.directRadiance);
     for (std::uint32_t k = 0; k < samples; ++k) {
         const gpu::CameraSample sample = g.camera->sample(k, samples > 1, mTime);
         push.samplePosition = sample.samplePosition;

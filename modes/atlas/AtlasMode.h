@@ -64,6 +64,7 @@
 #include "modes/Mode.h"
 
 #include <memory>
+#include <optional>
 
 namespace bl {
 
@@ -76,6 +77,8 @@ public:
     static constexpr const char* kWeighting = "weighting";
     static constexpr const char* kViewSamples = "view_samples";
     static constexpr const char* kBilinear = "bilinear";
+    static constexpr const char* kShadowResolution = "shadow_resolution";
+    static constexpr const char* kLightSamples = "light_samples";
     static constexpr const char* kMemoryCap = "memory_cap_mib";
 
     static std::vector<ParamSpec> parameters();
@@ -104,6 +107,8 @@ public:
 private:
     struct Gpu;
     void buildBundle(const IterationInfo& info);
+    // Point/spot lights at scene time `time` into the direct atlas and the first sender.
+    void lightDirect(double time);
 
     Settings mSettings;
     const Scene* mScene = nullptr;
@@ -112,6 +117,7 @@ private:
     std::uint32_t mIterations = 0;
     double mTotalWeight = 0.0; // sum of w_j over the directions done
     double mTime = 0.0; // scene time of the last direction: the view renders the scene there
+    std::optional<double> mSolutionTime; // scene time of the geometry and lights the atlas holds
 };
 
 } // namespace bl

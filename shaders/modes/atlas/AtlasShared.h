@@ -35,6 +35,33 @@ struct AtlasTriangle {
 };
 BL_STATIC_ASSERT(sizeof(AtlasTriangle) == 32, "AtlasTriangle layout");
 
+// A sample point inside a texel's preimage (modes/atlas/TexelSamples.h), for direct light from
+// point and spot lights gathered per texel by shadow maps.
+struct AtlasSample {
+    vec3 position; // world space
+    float weight;  // world area per uv area of its triangle
+    vec3 normal;   // geometric, front side
+    uint texel;
+};
+BL_STATIC_ASSERT(sizeof(AtlasSample) == 32, "AtlasSample layout");
+
+// Direct pass: one invocation per texel averages point/spot light over its samples, both sides.
+struct AtlasDirectPush {
+    uvec2 samples;    // AtlasSample[] grouped by texel
+    uvec2 first;      // uint per texel + 1: its first sample
+    uvec2 texels;     // AtlasTexel[]
+    uvec2 direct;     // vec4 per texel side: reflected radiance of point/spot light (written)
+    uvec2 sender;     // vec4 per texel side: set to emission + direct (the first direction's sender)
+    uint texelCount;
+    uint lightCount;
+    uint shadowResolution;
+    uint pad0;
+};
+BL_STATIC_ASSERT(sizeof(AtlasDirectPush) == 56, "AtlasDirectPush layout");
+BL_CONST uint kAtlasDirectSet = 0u;
+BL_CONST uint kAtlasDirectBindingLights = 0u;     // GpuLight[] storage buffer
+BL_CONST uint kAtlasDirectBindingShadowMaps = 1u; // r32f 2D-array storage image (ShadowCubePass)
+
 // Parameters of one direction, written by the host before its submission.
 struct AtlasDirection {
     vec3 environmentForward;  // environment radiance arriving from +omega (escapes past a list's end)
@@ -72,8 +99,11 @@ struct AtlasUpdatePush {
     float weight;     // w_j of this direction in the weighted mean (AtlasMode.h: weighting)
     float inverseTotalWeight; // 1 / sum of w over the directions so far, this one included
     uint clearSums;   // 1: start the sums over (this direction is the first)
+    uvec2 direct;     // vec4 per texel side: point/spot light reflected (direct pass), part of the sender
+    uint pad0;
+    uint pad1;
 };
-BL_STATIC_ASSERT(sizeof(AtlasUpdatePush) == 48, "AtlasUpdatePush layout");
+BL_STATIC_ASSERT(sizeof(AtlasUpdatePush) == 64, "AtlasUpdatePush layout");
 
 // View raster: the camera's visible surface with its atlas uv, page and side.
 struct AtlasViewPush {
@@ -96,8 +126,11 @@ struct AtlasShadePush {
     vec2 samplePosition;   // sub-pixel camera sample, for background rays
     uint environmentPresent;
     float environmentRotation;
+    uvec2 direct;          // vec4 per texel side: point/spot light reflected, to layer `direct`
+    uint pad0;
+    uint pad1;
 };
-BL_STATIC_ASSERT(sizeof(AtlasShadePush) == 64, "AtlasShadePush layout");
+BL_STATIC_ASSERT(sizeof(AtlasShadePush) == 80, "AtlasShadePush layout");
 
 BL_CONST uint kAtlasGroupSize = 64u;     // 1D passes (bundle pixels, texel sides)
 BL_CONST uint kAtlasViewGroupSize = 8u;  // 2D shade pass
@@ -106,9 +139,11 @@ BL_CONST uint kAtlasViewGroupSize = 8u;  // 2D shade pass
 BL_CONST uint kAtlasViewSet = 1u;
 BL_CONST uint kAtlasViewBinding = 0u;    // storage image rgba32f, the view attachment
 
-// Layers: emitters and the environment seen directly (1 segment) in `emitted`; the atlas does not
-// separate path lengths, so all reflected light (2 segments and more) goes to `rest`.
-BL_CONST uint kAtlasAccumLayers = (1u << kPathEmitted) | (1u << kPathRest);
+// Layers: emitters and the environment seen directly (1 segment) in `emitted`; point and spot
+// light reflected once (shadow maps, 2 segments) in `direct`; everything the exchange brings (area
+// emitters' and the environment's direct light included: the exchange does not separate path
+// lengths) in `rest`.
+BL_CONST uint kAtlasAccumLayers = (1u << kPathEmitted) | (1u << kPathDirect) | (1u << kPathRest);
 
 BL_NAMESPACE_END
 #endif

@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Mode atlas, camera view: per pixel, the emitted radiance seen (G-buffer, front faces only), the
 // environment behind the scene, and the reflected radiance of the atlas texel side the camera sees
-// (weighted sum over directions / total weight), bilinear between texel centres inside the chart.
+// (weighted sum over directions / total weight, layer `rest`; point/spot light of the direct pass,
+// layer `direct`), bilinear between texel centres inside the chart.
 #include "modes/atlas/AtlasBuffers.glsl"
 #define BL_ACCUM_LAYERS kAtlasAccumLayers
 #include "gpu/CameraSet.glsl"
@@ -11,50 +12,59 @@ layout(local_size_x = kAtlasViewGroupSize, local_size_y = kAtlasViewGroupSize) i
 layout(set = kAtlasViewSet, binding = kAtlasViewBinding, rgba32f) uniform readonly image2D viewImage;
 layout(push_constant) uniform PushBlock { AtlasShadePush push; };
 
-vec3 reflectedAt(ivec2 texel, uint page, uint side) {
-    uint index = (page * push.atlasHeight + uint(texel.y)) * push.atlasWidth + uint(texel.x);
+// Index of texel `texel` of `page`.
+uint indexOf(ivec2 texel, uint page) { return (page * push.atlasHeight + uint(texel.y)) * push.atlasWidth + uint(texel.x); }
+
+// Adds w times a texel side's reflected radiance: the exchange's weighted mean and the direct
+// pass's point and spot light.
+void reflectedAt(uint index, uint side, float w, inout vec3 exchanged, inout vec3 direct) {
     uint slot = kAtlasSides * index + side;
     AtlasRadiance sums = AtlasRadiance(push.sums);
-    return (sums.radiance[2u * slot].rgb + sums.radiance[2u * slot + 1u].rgb) * push.reflectedScale;
+    exchanged += w * (sums.radiance[2u * slot].rgb + sums.radiance[2u * slot + 1u].rgb) * push.reflectedScale;
+    direct += w * AtlasRadiance(push.direct).radiance[slot].rgb;
 }
 
 bool usable(ivec2 texel, uint page, int chart) {
     if (texel.x < 0 || texel.y < 0 || texel.x >= int(push.atlasWidth) || texel.y >= int(push.atlasHeight)) {
         return false;
     }
-    uint index = (page * push.atlasHeight + uint(texel.y)) * push.atlasWidth + uint(texel.x);
+    uint index = indexOf(texel, page);
     return AtlasCharts(push.charts).charts[index] == chart && AtlasTexels(push.texels).texels[index].inverseArea > 0.0;
 }
 
-vec3 reflected(vec2 uv, uint page, uint side) {
-    if (push.reflectedScale == 0.0) {
-        return vec3(0.0);
-    }
+// The exchanged and the direct reflected radiance at atlas uv of `page`, side `side`.
+void reflected(vec2 uv, uint page, uint side, out vec3 exchanged, out vec3 direct) {
+    exchanged = vec3(0.0);
+    direct = vec3(0.0);
     vec2 size = vec2(push.atlasWidth, push.atlasHeight);
     ivec2 nearest = clamp(ivec2(floor(uv * size)), ivec2(0), ivec2(size) - 1);
     if (push.bilinear == 0u) {
-        return reflectedAt(nearest, page, side);
+        reflectedAt(indexOf(nearest, page), side, 1.0, exchanged, direct);
+        return;
     }
     // Bilinear between the four texel centres around uv, over those of the same chart that hold
     // surface (weights renormalized): no light from a neighbouring chart or an empty texel.
-    int chart = AtlasCharts(push.charts).charts[(page * push.atlasHeight + uint(nearest.y)) * push.atlasWidth +
-                                               uint(nearest.x)];
+    int chart = AtlasCharts(push.charts).charts[indexOf(nearest, page)];
     vec2 p = uv * size - 0.5;
     ivec2 base = ivec2(floor(p));
     vec2 f = p - vec2(base);
-    vec3 sum = vec3(0.0);
     float weights = 0.0;
     for (int dy = 0; dy <= 1; ++dy) {
         for (int dx = 0; dx <= 1; ++dx) {
             ivec2 t = base + ivec2(dx, dy);
             float w = (dx == 1 ? f.x : 1.0 - f.x) * (dy == 1 ? f.y : 1.0 - f.y);
             if (w > 0.0 && usable(t, page, chart)) {
-                sum += w * reflectedAt(t, page, side);
+                reflectedAt(indexOf(t, page), side, w, exchanged, direct);
                 weights += w;
             }
         }
     }
-    return weights > 0.0 ? sum / weights : reflectedAt(nearest, page, side);
+    if (weights > 0.0) {
+        exchanged /= weights;
+        direct /= weights;
+    } else {
+        reflectedAt(indexOf(nearest, page), side, 1.0, exchanged, direct);
+    }
 }
 
 void main() {
@@ -72,7 +82,7 @@ void main() {
                                                   push.environmentRotation);
     } else {
         layers[kPathEmitted] = imageLoad(gbuffer[kGBufferEmission], pixel).rgb;
-        layers[kPathRest] = reflected(view.xy, uint(view.z), uint(view.w) - 1u);
+        reflected(view.xy, uint(view.z), uint(view.w) - 1u, layers[kPathRest], layers[kPathDirect]);
     }
     blAccumulate(pixel, layers);
 }

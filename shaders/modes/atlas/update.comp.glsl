@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Mode atlas, after each direction: per texel side, the direction's received radiance joins the
 // compensated (Neumaier) weighted sum over directions (weight w_j), the sender becomes
-// emission + sum / W (interleaved transfer: the next direction already sends what this one
+// emission + direct (point/spot light, direct pass) + sum / W (interleaved transfer: the next direction already sends what this one
 // brought, so direction i carries light of up to i bounces), and the receiver is cleared.
 #include "modes/atlas/AtlasBuffers.glsl"
 #include "bundle/BundleBuffers.glsl"
@@ -33,5 +33,6 @@ void main() {
     sums.radiance[2u * slot] = vec4(t, 0.0);
     sums.radiance[2u * slot + 1u] = vec4(error, 0.0);
     vec3 emitted = side == kAtlasFront ? AtlasTexels(push.texels).texels[texel].emission : vec3(0.0);
+    emitted += AtlasRadiance(push.direct).radiance[slot].rgb;
     AtlasRadiance(push.sender).radiance[slot] = vec4(emitted + (t + error) * push.inverseTotalWeight, 0.0);
 }
