@@ -48,6 +48,7 @@ constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
 DirectionSequence sequenceOf(const std::string& name) {
     if (name == "random") return DirectionSequence::Random;
     if (name == "stratified") return DirectionSequence::Stratified;
+    if (name == "importance") return DirectionSequence::Importance;
     return DirectionSequence::Halton;
 }
 
@@ -71,9 +72,15 @@ std::vector<ParamSpec> AtlasMode::parameters() {
          "side of an atlas page; the texel density follows from the scene's surface area", 16, 16384, {}},
         {kBundleResolution, std::int64_t{512}, "pixels", "side of each direction's bundle (frame over the bounding sphere)",
          8, 8192, {}},
-        {kDirections, std::string("halton"), "", "global directions, uniform on the sphere (Hermes et al.: Halton)", 0, 0,
-         {"halton", "random", "stratified"}},
+        {kDirections, std::string("halton"), "",
+         "global directions: uniform on the sphere (Hermes et al.: Halton), or importance = environment luminance + "
+         "offset ([TO12] Eq. 2; every direction is weighted by its density)",
+         0, 0, {"halton", "random", "stratified", "importance"}},
         {kStrata, std::int64_t{1024}, "directions", "directions per pass of the stratified sequence", 1, 1 << 24, {}},
+        {kImportanceOffset, 1.0, "",
+         "L_o of directions=importance as a fraction of the mean environment luminance: keeps every direction sampled "
+         "for the exchange between surfaces",
+         0.0, 1e6, {}},
         {kWeighting, 2.0, "",
          "k: direction j weighs j^k in the estimate, forgetting the first directions' missing bounces (0: plain mean)",
          0.0, 8.0, {}},
@@ -104,6 +111,7 @@ struct AtlasMode::Gpu {
     std::unique_ptr<BundlePool> pool;
     std::unique_ptr<DirectionSampler> directions;
     EnvironmentLight environment;
+    std::unique_ptr<EnvironmentLight> importance; // luminance-sampled, for directions=importance
     std::unique_ptr<gpu::ShadowCubePass> shadows; // only with point or spot lights
     vk::Buffer texels, triangles, charts, sender, received, sums, directRadiance;
     vk::Buffer samples, firstSample; // TexelSamples of the direct pass (with lights only)
@@ -201,6 +209,12 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->view = std::make_unique<atlasmode::AtlasViewPass>(*ctx, *g->scene, width, height);
     g->bounds = scene.bounds();
     g->environment = EnvironmentLight(scene.environment, false);
+    if (sequenceOf(mSettings.getString(kDirections)) == DirectionSequence::Importance) {
+        if (!scene.environment.present) {
+            throw Error("atlas: directions=importance needs an environment in the scene");
+        }
+        g->importance = std::make_unique<EnvironmentLight>(scene.environment, true);
+    }
 
     // One grid of R + 1 pixels a side: each direction's grid is shifted by a random sub-pixel
     // offset (below), and the extra pixel keeps the bounding sphere covered.
@@ -369,9 +383,10 @@ void AtlasMode::iterate(const IterationInfo& info) {
     }
     if (!g.directions) {
         // The seed decorrelates runs; directions are reproducible from (settings, seed).
-        g.directions = std::make_unique<DirectionSampler>(sequenceOf(mSettings.getString(kDirections)),
-                                                          static_cast<std::uint32_t>(info.seed),
-                                                          static_cast<std::uint32_t>(mSettings.getInt(kStrata)));
+        g.directions = std::make_unique<DirectionSampler>(
+            sequenceOf(mSettings.getString(kDirections)), static_cast<std::uint32_t>(info.seed),
+            static_cast<std::uint32_t>(mSettings.getInt(kStrata)), g.importance.get(),
+            static_cast<float>(mSettings.getDouble(kImportanceOffset)));
     }
     mTime = info.time;
     buildBundle(info);

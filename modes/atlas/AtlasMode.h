@@ -74,6 +74,7 @@ public:
     static constexpr const char* kBundleResolution = "bundle_resolution";
     static constexpr const char* kDirections = "directions";
     static constexpr const char* kStrata = "strata";
+    static constexpr const char* kImportanceOffset = "importance_offset";
     static constexpr const char* kWeighting = "weighting";
     static constexpr const char* kViewSamples = "view_samples";
     static constexpr const char* kBilinear = "bilinear";
