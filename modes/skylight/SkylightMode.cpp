@@ -2,7 +2,9 @@
 
 #include "base/Error.h"
 #include "bundle/BundleFrame.h"
+#include "bundle/BundlePool.h"
 #include "bundle/DepthMapPass.h"
+#include "modes/skylight/IrradianceTable.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
 
@@ -42,6 +44,9 @@ std::vector<ParamSpec> SkylightMode::parameters() {
         {kVisibility, std::string("bundle"), "",
          "bundle: omega and -omega for every point; depth_map: a directional shadow map, omega only", 0, 0,
          {"bundle", "depth_map"}},
+        {kControlVariate, std::string("off"), "",
+         "on: add the tabulated unoccluded Lambert irradiance and let bundles estimate only what occluders remove",
+         0, 0, {"off", "on"}},
     };
 }
 
@@ -58,6 +63,7 @@ struct SkylightMode::Gpu {
     vk::GpuImage placeholder;               // r32f 1x1 bound as the depth map otherwise
     std::unique_ptr<EnvironmentLight> environment;
     std::unique_ptr<DirectionSampler> directions;
+    vk::Buffer irradiance; // control_variate = on: IrradianceTable entries
     vk::Buffer frame;
     vk::DescriptorSetLayout setLayout;
     vk::DescriptorPool pool;
@@ -114,6 +120,11 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
         g->placeholder = vk::GpuImage(*ctx, {1, 1, 1, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
     }
     g->environment = std::make_unique<EnvironmentLight>(scene.environment, true);
+    if (mSettings.getString(kControlVariate) == "on") {
+        const IrradianceTable table(scene.environment);
+        g->irradiance = vk::makeBuffer(*ctx, std::span<const glm::vec4>(table.entries()),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
+    }
     g->bounds = scene.bounds();
     const DirectionSequence sequence = sequenceOf(mSettings.getString(kDirections));
     if (sequence == DirectionSequence::Importance && !scene.environment.present) {
@@ -196,6 +207,10 @@ void SkylightMode::iterate(const IterationInfo& info) {
     push.environmentRotation = g.scene->environmentRotation();
     push.samplePosition = sample.samplePosition;
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
+    if (g.irradiance.get()) {
+        push.controlVariate = 1u;
+        push.irradianceAddress = split(deviceAddress(*mContext, g.irradiance));
+    }
     auto dispatchVisibility = [&](VkCommandBuffer cmd) {
         std::uint32_t scope = g.timer.start(cmd, "visibility");
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());

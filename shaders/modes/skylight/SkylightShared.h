@@ -2,6 +2,7 @@
 #ifndef BL_SKYLIGHT_SHARED_H
 #define BL_SKYLIGHT_SHARED_H
 #include "../../shared/Accumulation.h"
+#include "../../shared/EnvMap.h"
 
 BL_NAMESPACE_BEGIN
 
@@ -19,8 +20,10 @@ struct SkylightPush {
     vec2 samplePosition;   // this iteration's sub-pixel camera sample, for background rays
     uint environmentPresent;
     uint visibility;       // kSkylightVisibilityBundle or kSkylightVisibilityDepthMap
+    uvec2 irradianceAddress; // IrradianceTable entries (vec4), when controlVariate != 0
+    uint controlVariate;   // 1: add lambert E(n) and subtract the unoccluded lambert sample
 };
-BL_STATIC_ASSERT(sizeof(SkylightPush) == 80, "SkylightPush layout");
+BL_STATIC_ASSERT(sizeof(SkylightPush) == 92, "SkylightPush layout");
 
 // Bundle: omega and -omega for every point (pdf p_r). Depth map (a directional shadow map): omega
 // only, for the points on its side (pdf q on the sphere); the others wait for another direction.
@@ -28,6 +31,25 @@ BL_CONST uint kSkylightVisibilityBundle = 0u;
 BL_CONST uint kSkylightVisibilityDepthMap = 1u;
 
 BL_CONST uint kSkylightGroupSize = 8u;
+
+// The irradiance table of the control variate (modes/skylight/IrradianceTable.h): E at normals on
+// a lat-long grid, column i at u = i / width, row j at v = j / (height - 1) (both poles are rows).
+BL_CONST uint kSkylightIrradianceWidth = 128u;
+BL_CONST uint kSkylightIrradianceHeight = 65u;
+
+// The four table entries around normal n (rows y0, y0 + 1; columns x0, x0 + 1 wrapping) and the
+// bilinear weights between them.
+BL_INLINE uvec4 blSkylightIrradianceTaps(vec3 n, BL_OUT(vec2) weights) {
+    vec2 uv = blEnvDirectionToUv(n, 0.0f);
+    float fx = uv.x * float(kSkylightIrradianceWidth);
+    float fy = uv.y * float(kSkylightIrradianceHeight - 1u);
+    uint x0 = min(uint(fx), kSkylightIrradianceWidth - 1u);
+    uint y0 = min(uint(fy), kSkylightIrradianceHeight - 2u);
+    weights = vec2(fx - float(x0), fy - float(y0));
+    uint x1 = (x0 + 1u) % kSkylightIrradianceWidth;
+    uint row = y0 * kSkylightIrradianceWidth;
+    return uvec4(row + x0, row + x1, row + kSkylightIrradianceWidth + x0, row + kSkylightIrradianceWidth + x1);
+}
 
 // Layers the skylight mode writes: visible emitters and the environment behind the scene
 // (1 segment), direct light from the environment (2 segments).

@@ -6,6 +6,13 @@
 // is added (direct layer), with the emitted radiance of visible emitters (emitted layer), as one
 // sample of the pixel. Points of other tiles are left to their tile; the tile with addBase handles
 // the pixels whose camera ray escapes (the environment behind the scene).
+//
+// Control variate (controlVariate != 0): the Lambert part of the unoccluded sample,
+//   h(d) = L_e(d) (albedo / pi) (n.d),  whose integral (albedo / pi) E(n) is tabulated
+// (modes/skylight/IrradianceTable.h), is subtracted from the sample and its integral added:
+//   (albedo / pi) E(n) + [V L_e f (n.d) - L_e (albedo / pi) (n.d)] / p(d).
+// Same mean (up to the table's error); a diffuse point no occluder hides adds exactly
+// (albedo / pi) E(n) every iteration, so bundles only estimate what occluders remove.
 #include "bundle/Traversal.glsl"
 #include "modes/skylight/SkylightShared.h"
 #define BL_ACCUM_LAYERS kSkylightAccumLayers
@@ -17,6 +24,16 @@ layout(local_size_x = kSkylightGroupSize, local_size_y = kSkylightGroupSize) in;
 layout(set = kSkylightSet, binding = kSkylightBindingFrame) uniform FrameBlock { BundleFrame frame; };
 layout(set = kSkylightSet, binding = kSkylightBindingDepthMap, r32f) uniform readonly image2D depthMap;
 layout(push_constant) uniform PushBlock { SkylightPush push; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SkylightIrradiance { vec4 entries[]; };
+
+// E(n), bilinear between the table's normals (as IrradianceTable::lookup).
+vec3 blSkylightIrradiance(vec3 n) {
+    SkylightIrradiance table = SkylightIrradiance(push.irradianceAddress);
+    vec2 t;
+    uvec4 i = blSkylightIrradianceTaps(n, t);
+    return mix(mix(table.entries[i.x].rgb, table.entries[i.y].rgb, t.x),
+               mix(table.entries[i.z].rgb, table.entries[i.w].rgb, t.x), t.y);
+}
 
 bool occluded(BlBundleLightSample s, ivec2 bundlePixel, float depth) {
     if (push.visibility == kSkylightVisibilityBundle) {
@@ -56,10 +73,17 @@ void main() {
     for (uint l = 0u; l < kPathLayerCount; ++l) {
         layers[l] = vec3(0.0);
     }
+    vec3 albedo = imageLoad(gbuffer[kGBufferAlbedo], pixel).rgb;
     if (s.usable && !occluded(s, bundlePixel, depth)) {
-        vec3 albedo = imageLoad(gbuffer[kGBufferAlbedo], pixel).rgb;
         vec3 wo = normalize(camera.position - position);
         layers[kPathDirect] = blBundleLightContribution(s, materials[uint(normalMaterial.w)], albedo, n, wo);
+    }
+    if (push.controlVariate != 0u) {
+        vec3 lambert = blLambert(albedo);
+        if (s.usable) {
+            layers[kPathDirect] -= s.radiance * lambert * (s.cosine / s.pdf);
+        }
+        layers[kPathDirect] += lambert * blSkylightIrradiance(n);
     }
     // Each point lies in exactly one tile: it adds its emission and its sample there.
     layers[kPathEmitted] = imageLoad(gbuffer[kGBufferEmission], pixel).rgb;
