@@ -39,8 +39,8 @@ constexpr std::uint64_t kInitialNodesPerPixel = 4;
 constexpr std::uint32_t kGridKeyX = 0x68e31da4u;
 constexpr std::uint32_t kGridKeyY = 0xb5297a4du;
 // Device bytes per texel: texel table (32), sender (2 x 16), received (2 x 16), sums (2 x 32),
-// direct (2 x 16), chart (4).
-constexpr VkDeviceSize kBytesPerTexel = 32 + 32 + 32 + 64 + 32 + 4;
+// direct (2 x 16), settled (2 x 16), chart (4).
+constexpr VkDeviceSize kBytesPerTexel = 32 + 32 + 32 + 64 + 32 + 32 + 4;
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                         VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
@@ -84,6 +84,16 @@ std::vector<ParamSpec> AtlasMode::parameters() {
         {kWeighting, 2.0, "",
          "k: direction j weighs j^k in the estimate, forgetting the first directions' missing bounces (0: plain mean)",
          0.0, 8.0, {}},
+        {kTransfer, std::string("interleaved"), "",
+         "interleaved: the sender is rewritten after every direction (Hermes et al.'s default); bounce: one pass of "
+         "bounce_directions per bounce, each sending the previous pass's light",
+         0, 0, {"interleaved", "bounce"}},
+        {kBounceDirections, std::int64_t{256}, "directions", "transfer = bounce: directions per pass (bounce)", 1, 1 << 24,
+         {}},
+        {kMaxSegments, std::int64_t{0}, "segments",
+         "transfer = bounce: longest path kept (1 = emitters only, 2 = one reflection, ...; 0: no limit); the last "
+         "pass keeps refining",
+         0, 1 << 16, {}},
         {kViewSamples, std::int64_t{16}, "samples", "jittered camera samples per pixel when the atlas is viewed (resolve)",
          1, 4096, {}},
         {kBilinear, true, "", "bilinear lookups between texel centres inside a chart (else the texel alone)", 0, 0, {}},
@@ -113,7 +123,7 @@ struct AtlasMode::Gpu {
     EnvironmentLight environment;
     std::unique_ptr<EnvironmentLight> importance; // luminance-sampled, for directions=importance
     std::unique_ptr<gpu::ShadowCubePass> shadows; // only with point or spot lights
-    vk::Buffer texels, triangles, charts, sender, received, sums, directRadiance;
+    vk::Buffer texels, triangles, charts, sender, received, sums, directRadiance, settled;
     vk::Buffer samples, firstSample; // TexelSamples of the direct pass (with lights only)
     vk::Buffer direction; // AtlasDirection, host-written before each direction's submission
     vk::PipelineLayout exchangeLayout, updateLayout, shadeLayout, directLayout;
@@ -173,7 +183,12 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     mContext = ctx;
     mIterations = 0;
     mTotalWeight = 0.0;
+    mPass = 1;
     mTime = 0.0;
+    if (mSettings.getString(kTransfer) != "bounce" && mSettings.getInt(kMaxSegments) != 0) {
+        throw Error("atlas: max_segments needs transfer=bounce (interleaved transfer mixes path lengths in every "
+                    "direction's sender)");
+    }
     mSolutionTime.reset();
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
@@ -245,6 +260,8 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
                                  kStorage);
     g->directRadiance = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(shader::kAtlasSides * texels)),
                                kStorage);
+    g->settled = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(shader::kAtlasSides * texels)),
+                                kStorage);
     g->sums = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(2 * shader::kAtlasSides * texels)),
                              kStorage);
     g->direction = vk::Buffer(*ctx, sizeof(shader::AtlasDirection),
@@ -304,8 +321,10 @@ void AtlasMode::buildBundle(const IterationInfo& info) {
 
     shader::AtlasDirection params{};
     // Radiance arriving from +omega at the last hit of a list, from -omega at the first.
-    params.environmentForward = g.environment.present() ? g.environment.radiance(frame.direction) : glm::vec3(0.0f);
-    params.environmentBackward = g.environment.present() ? g.environment.radiance(-frame.direction) : glm::vec3(0.0f);
+    // Bounce-by-bounce: the environment is a source, sent in pass 1 only (later passes send reflected light).
+    const bool environment = g.environment.present() && (!bounce() || mPass == 1);
+    params.environmentForward = environment ? g.environment.radiance(frame.direction) : glm::vec3(0.0f);
+    params.environmentBackward = environment ? g.environment.radiance(-frame.direction) : glm::vec3(0.0f);
     params.weight = frame.pixelSize * frame.pixelSize / (shader::kPi * g.directions->hemispherePdf(frame.direction));
     std::memcpy(g.direction.data(), &params, sizeof(params));
 
@@ -351,6 +370,7 @@ void AtlasMode::lightDirect(double time) {
     push.texelCount = g.texelCount;
     push.lightCount = g.shadows->lightCount();
     push.shadowResolution = g.shadows->resolution();
+    push.directIntoSender = bounce() ? 0u : 1u;
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         g.shadows->record(cmd, time, &g.timer);
@@ -389,6 +409,11 @@ void AtlasMode::iterate(const IterationInfo& info) {
             static_cast<float>(mSettings.getDouble(kImportanceOffset)));
     }
     mTime = info.time;
+    const auto maxSegments = static_cast<std::uint32_t>(mSettings.getInt(kMaxSegments));
+    if (bounce() && maxSegments == 1) {
+        ++mIterations; // emitters only: nothing is reflected
+        return;
+    }
     buildBundle(info);
 
     const std::uint32_t bundlePixels = g.pool->slotPixels();
@@ -408,11 +433,20 @@ void AtlasMode::iterate(const IterationInfo& info) {
     update.received = exchange.received;
     update.sums = addressOf(*mContext, g.sums);
     update.texelCount = g.texelCount;
-    const double weight = std::pow(double(mIterations + 1), mSettings.getDouble(kWeighting));
+    // Interleaved: direction j weighs j^k. Bounce: the sender is fixed within a pass, so its
+    // directions weigh the same, and the pass's last direction settles it (the last pass allowed
+    // by max_segments never settles: it keeps refining).
+    const auto passDirections = static_cast<std::uint32_t>(mSettings.getInt(kBounceDirections));
+    const double weight = bounce() ? 1.0 : std::pow(double(mIterations + 1), mSettings.getDouble(kWeighting));
     update.weight = float(weight);
     update.inverseTotalWeight = float(1.0 / (mTotalWeight + weight));
-    update.clearSums = mIterations == 0 ? 1u : 0u;
+    update.clearSums = mTotalWeight == 0.0 ? 1u : 0u;
     update.direct = addressOf(*mContext, g.directRadiance);
+    update.settled = addressOf(*mContext, g.settled);
+    update.transfer = bounce() ? shader::kAtlasTransferBounce : shader::kAtlasTransferInterleaved;
+    const bool lastPass = maxSegments != 0 && mPass + 1 >= maxSegments;
+    update.settle = bounce() && !lastPass && std::uint32_t(mTotalWeight + weight) >= passDirections ? 1u : 0u;
+    update.directIntoSender = mPass == 1 ? 1u : 0u;
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         std::uint32_t scope = g.timer.start(cmd, "exchange");
@@ -431,6 +465,10 @@ void AtlasMode::iterate(const IterationInfo& info) {
     });
     g.timer.collect();
     mTotalWeight += weight;
+    if (update.settle != 0u) {
+        ++mPass;
+        mTotalWeight = 0.0;
+    }
     ++mIterations;
 }
 
@@ -450,7 +488,9 @@ ImageSet AtlasMode::resolve() {
     push.height = height;
     push.atlasWidth = static_cast<std::uint32_t>(g.atlas.maps.width);
     push.atlasHeight = static_cast<std::uint32_t>(g.atlas.maps.height);
-    push.reflectedScale = mIterations > 0 ? float(1.0 / mTotalWeight) : 0.0f;
+    push.reflectedScale = mTotalWeight > 0.0 ? float(1.0 / mTotalWeight) : 0.0f;
+    push.settled = addressOf(*mContext, g.settled);
+    push.directScale = directScale();
     push.bilinear = mSettings.getBool(kBilinear) ? 1u : 0u;
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
     push.environmentRotation = g.scene->environmentRotation();
@@ -495,13 +535,16 @@ AtlasMode::TexelRadiance AtlasMode::readTexels() const {
     }
     const Gpu& g = *mGpu;
     const std::size_t slots = shader::kAtlasSides * g.texelCount;
-    std::vector<glm::vec4> sums(2 * slots);
+    std::vector<glm::vec4> sums(2 * slots), settled(slots), direct(slots);
     g.sums.download(*mContext, sums.data(), sums.size() * sizeof(glm::vec4));
+    g.settled.download(*mContext, settled.data(), settled.size() * sizeof(glm::vec4));
+    g.directRadiance.download(*mContext, direct.data(), direct.size() * sizeof(glm::vec4));
+    const float scale = mTotalWeight > 0.0 ? float(1.0 / mTotalWeight) : 0.0f;
     TexelRadiance out;
     out.reflected.resize(slots);
     for (std::size_t s = 0; s < slots; ++s) {
-        out.reflected[s] = mIterations > 0 ? glm::vec3(sums[2 * s] + sums[2 * s + 1]) * float(1.0 / mTotalWeight)
-                                           : glm::vec3(0.0f);
+        out.reflected[s] = glm::vec3(sums[2 * s] + sums[2 * s + 1]) * scale + glm::vec3(settled[s]) +
+                           directScale() * glm::vec3(direct[s]);
     }
     for (const shader::AtlasTexel& t : g.tables.texels) {
         out.emission.push_back(t.emission);
@@ -509,6 +552,10 @@ AtlasMode::TexelRadiance AtlasMode::readTexels() const {
     }
     return out;
 }
+
+bool AtlasMode::bounce() const { return mSettings.getString(kTransfer) == "bounce"; }
+
+float AtlasMode::directScale() const { return bounce() && mSettings.getInt(kMaxSegments) == 1 ? 0.0f : 1.0f; }
 
 PassTimes AtlasMode::timings() const { return mGpu ? mGpu->timer.totals() : PassTimes{}; }
 

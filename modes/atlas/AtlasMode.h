@@ -76,6 +76,9 @@ public:
     static constexpr const char* kStrata = "strata";
     static constexpr const char* kImportanceOffset = "importance_offset";
     static constexpr const char* kWeighting = "weighting";
+    static constexpr const char* kTransfer = "transfer";
+    static constexpr const char* kBounceDirections = "bounce_directions";
+    static constexpr const char* kMaxSegments = "max_segments";
     static constexpr const char* kViewSamples = "view_samples";
     static constexpr const char* kBilinear = "bilinear";
     static constexpr const char* kShadowResolution = "shadow_resolution";
@@ -110,13 +113,17 @@ private:
     void buildBundle(const IterationInfo& info);
     // Point/spot lights at scene time `time` into the direct atlas and the first sender.
     void lightDirect(double time);
+    bool bounce() const; // transfer = bounce
+    // 1, or 0 where max_segments = 1 leaves out all reflected light (the direct atlas included).
+    float directScale() const;
 
     Settings mSettings;
     const Scene* mScene = nullptr;
     vk::Context* mContext = nullptr;
     std::unique_ptr<Gpu> mGpu;
     std::uint32_t mIterations = 0;
-    double mTotalWeight = 0.0; // sum of w_j over the directions done
+    double mTotalWeight = 0.0; // sum of w_j over the directions in the sums (bounce: of the current pass)
+    std::uint32_t mPass = 1;   // transfer = bounce: the pass (bounce) under way, 1-based
     double mTime = 0.0; // scene time of the last direction: the view renders the scene there
     std::optional<double> mSolutionTime; // scene time of the geometry and lights the atlas holds
 };

@@ -55,7 +55,7 @@ struct AtlasDirectPush {
     uint texelCount;
     uint lightCount;
     uint shadowResolution;
-    uint pad0;
+    uint directIntoSender; // 1: sender = emission + direct (interleaved); 0: emission only (bounce pass 1)
 };
 BL_STATIC_ASSERT(sizeof(AtlasDirectPush) == 56, "AtlasDirectPush layout");
 BL_CONST uint kAtlasDirectSet = 0u;
@@ -100,10 +100,20 @@ struct AtlasUpdatePush {
     float inverseTotalWeight; // 1 / sum of w over the directions so far, this one included
     uint clearSums;   // 1: start the sums over (this direction is the first)
     uvec2 direct;     // vec4 per texel side: point/spot light reflected (direct pass), part of the sender
+    uvec2 settled;    // vec4 per texel side: sum of the finished bounce passes' means (transfer = bounce)
+    uint transfer;    // kAtlasTransferInterleaved or kAtlasTransferBounce
+    uint settle;      // bounce: this direction ends its pass (its mean settles and becomes the sender)
+    uint directIntoSender; // bounce: the settling pass's sender gets the direct atlas too (pass 1 ends)
     uint pad0;
-    uint pad1;
 };
-BL_STATIC_ASSERT(sizeof(AtlasUpdatePush) == 64, "AtlasUpdatePush layout");
+BL_STATIC_ASSERT(sizeof(AtlasUpdatePush) == 80, "AtlasUpdatePush layout");
+
+// Transfer schemes ([HHGM10] section 5.5). Interleaved: the sender is rewritten after every
+// direction (emission + direct + the running mean). Bounce: the sender is fixed for a pass of
+// directions (pass 1: emission; pass b: pass b - 1's mean, + direct after pass 1), the pass's mean
+// settles into the `settled` atlas when it ends; paths of at most max_segments segments.
+BL_CONST uint kAtlasTransferInterleaved = 0u;
+BL_CONST uint kAtlasTransferBounce = 1u;
 
 // View raster: the camera's visible surface with its atlas uv, page and side.
 struct AtlasViewPush {
@@ -127,10 +137,13 @@ struct AtlasShadePush {
     uint environmentPresent;
     float environmentRotation;
     uvec2 direct;          // vec4 per texel side: point/spot light reflected, to layer `direct`
+    uvec2 settled;         // vec4 per texel side: finished bounce passes (transfer = bounce), to `rest`
+    float directScale;     // 1, or 0 where the path length limit leaves out reflected light
     uint pad0;
     uint pad1;
+    uint pad2;
 };
-BL_STATIC_ASSERT(sizeof(AtlasShadePush) == 80, "AtlasShadePush layout");
+BL_STATIC_ASSERT(sizeof(AtlasShadePush) == 96, "AtlasShadePush layout");
 
 BL_CONST uint kAtlasGroupSize = 64u;     // 1D passes (bundle pixels, texel sides)
 BL_CONST uint kAtlasViewGroupSize = 8u;  // 2D shade pass

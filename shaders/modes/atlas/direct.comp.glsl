@@ -6,7 +6,8 @@
 // each side of the surface (the side facing the light), 4x4 PCF visibility from the light's cube:
 //   L_direct(T, side) = albedo_T / pi * sum_s w_s sum_l I_l profile_l vis cos / r^2 / sum_s w_s.
 // The result is kept as its own atlas (the view's layer `direct`) and starts the sender atlas:
-// emission + direct, so the first direction already sends it.
+// emission + direct, so the first direction already sends it (interleaved; bounce-by-bounce sends
+// it from pass 2 on, pass 1 sends the emission).
 #include "modes/atlas/AtlasBuffers.glsl"
 #define BL_SHADOW_SET kAtlasDirectSet
 #define BL_SHADOW_BINDING kAtlasDirectBindingShadowMaps
@@ -53,6 +54,7 @@ void main() {
     direct.radiance[kAtlasSides * texel + kAtlasFront] = vec4(front * scale, 0.0);
     direct.radiance[kAtlasSides * texel + kAtlasBack] = vec4(back * scale, 0.0);
     AtlasRadiance sender = AtlasRadiance(push.sender);
-    sender.radiance[kAtlasSides * texel + kAtlasFront] = vec4(t.emission + front * scale, 0.0);
-    sender.radiance[kAtlasSides * texel + kAtlasBack] = vec4(back * scale, 0.0);
+    float into = push.directIntoSender != 0u ? 1.0 : 0.0;
+    sender.radiance[kAtlasSides * texel + kAtlasFront] = vec4(t.emission + into * front * scale, 0.0);
+    sender.radiance[kAtlasSides * texel + kAtlasBack] = vec4(into * back * scale, 0.0);
 }

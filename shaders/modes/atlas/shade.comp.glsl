@@ -20,8 +20,9 @@ uint indexOf(ivec2 texel, uint page) { return (page * push.atlasHeight + uint(te
 void reflectedAt(uint index, uint side, float w, inout vec3 exchanged, inout vec3 direct) {
     uint slot = kAtlasSides * index + side;
     AtlasRadiance sums = AtlasRadiance(push.sums);
-    exchanged += w * (sums.radiance[2u * slot].rgb + sums.radiance[2u * slot + 1u].rgb) * push.reflectedScale;
-    direct += w * AtlasRadiance(push.direct).radiance[slot].rgb;
+    exchanged += w * ((sums.radiance[2u * slot].rgb + sums.radiance[2u * slot + 1u].rgb) * push.reflectedScale +
+                      AtlasRadiance(push.settled).radiance[slot].rgb);
+    direct += w * push.directScale * AtlasRadiance(push.direct).radiance[slot].rgb;
 }
 
 bool usable(ivec2 texel, uint page, int chart) {

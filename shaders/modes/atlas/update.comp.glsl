@@ -1,9 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Mode atlas, after each direction: per texel side, the direction's received radiance joins the
-// compensated (Neumaier) weighted sum over directions (weight w_j), the sender becomes
-// emission + direct (point/spot light, direct pass) + sum / W (interleaved transfer: the next direction already sends what this one
-// brought, so direction i carries light of up to i bounces), and the receiver is cleared.
+// compensated (Neumaier) weighted sum over directions (weight w_j) and the receiver is cleared.
+// Interleaved transfer: the sender becomes emission + direct (point/spot light, direct pass) +
+// sum / W, so the next direction already sends what this one brought and direction i carries light
+// of up to i bounces. Bounce-by-bounce: the sender stays until the pass's last direction, whose
+// update settles the pass's mean and makes it the next pass's sender.
 #include "modes/atlas/AtlasBuffers.glsl"
 #include "bundle/BundleBuffers.glsl"
 
@@ -30,9 +32,24 @@ void main() {
     bvec3 sumBigger = greaterThanEqual(abs(sum), abs(x));
     precise vec3 lost = mix((x - t) + sum, (sum - t) + x, sumBigger);
     error += lost;
-    sums.radiance[2u * slot] = vec4(t, 0.0);
-    sums.radiance[2u * slot + 1u] = vec4(error, 0.0);
-    vec3 emitted = side == kAtlasFront ? AtlasTexels(push.texels).texels[texel].emission : vec3(0.0);
-    emitted += AtlasRadiance(push.direct).radiance[slot].rgb;
-    AtlasRadiance(push.sender).radiance[slot] = vec4(emitted + (t + error) * push.inverseTotalWeight, 0.0);
+    vec3 mean = (t + error) * push.inverseTotalWeight;
+    AtlasRadiance sender = AtlasRadiance(push.sender);
+    vec3 direct = AtlasRadiance(push.direct).radiance[slot].rgb;
+    if (push.transfer == kAtlasTransferInterleaved) {
+        sums.radiance[2u * slot] = vec4(t, 0.0);
+        sums.radiance[2u * slot + 1u] = vec4(error, 0.0);
+        vec3 emitted = side == kAtlasFront ? AtlasTexels(push.texels).texels[texel].emission : vec3(0.0);
+        sender.radiance[slot] = vec4(emitted + direct + mean, 0.0);
+    } else if (push.settle != 0u) {
+        // Bounce: the pass ends; its mean settles and is what the next pass sends (pure: the
+        // emission went in pass 1 only).
+        AtlasRadiance settled = AtlasRadiance(push.settled);
+        settled.radiance[slot] = vec4(settled.radiance[slot].rgb + mean, 0.0);
+        sender.radiance[slot] = vec4(mean + (push.directIntoSender != 0u ? direct : vec3(0.0)), 0.0);
+        sums.radiance[2u * slot] = vec4(0.0);
+        sums.radiance[2u * slot + 1u] = vec4(0.0);
+    } else {
+        sums.radiance[2u * slot] = vec4(t, 0.0);
+        sums.radiance[2u * slot + 1u] = vec4(error, 0.0);
+    }
 }

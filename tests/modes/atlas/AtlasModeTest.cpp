@@ -184,3 +184,32 @@ TEST_F(Atlas, EnvironmentMapMatchesReference) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(m.meanRatio[c], 1.0, 0.05) << "channel " << c;
     EXPECT_LT(m.blockRatios.rms, 0.08);
 }
+
+// Bounce-by-bounce transfer with path length limits in the furnace (emission 1, albedo 1/2): at most
+// 1, 2, 3 segments give 1, 1.5, 1.75 in every texel (the geometric series cut after 0, 1, 2
+// reflections), each pass's sender being exactly the previous pass's light.
+TEST_F(Atlas, FurnacePathLengthLimits) {
+    Scene s = loadSmall("data/analytic/furnace.toml", 16);
+    const double expected[] = {1.0, 1.5, 1.75};
+    for (int segments = 1; segments <= 3; ++segments) {
+        const std::uint32_t directions = segments == 1 ? 1u : 256u * std::uint32_t(segments - 1);
+        std::unique_ptr<Mode> mode =
+            run(s, directions,
+                {"atlas_resolution=48", "bundle_resolution=192", "transfer=bounce", "bounce_directions=256",
+                 "max_segments=" + std::to_string(segments)});
+        const AtlasMode::TexelRadiance texels = static_cast<AtlasMode&>(*mode).readTexels();
+        double worst = 0.0, mean = 0.0, areaSum = 0.0;
+        for (std::size_t t = 0; t < texels.area.size(); ++t) {
+            if (texels.area[t] <= 0.0f) continue;
+            const double l = texels.emission[t].x + texels.reflected[2 * t].x;
+            worst = std::max(worst, std::abs(l - expected[segments - 1]));
+            mean += l * texels.area[t];
+            areaSum += texels.area[t];
+        }
+        mean /= areaSum;
+        std::printf("furnace max_segments=%d: %u directions, mean %.5f (expected %.2f), worst deviation %.5f\n", segments,
+                    directions, mean, expected[segments - 1], worst);
+        EXPECT_NEAR(mean, expected[segments - 1], 0.005) << "max_segments " << segments;
+        EXPECT_LT(worst, 0.03) << "max_segments " << segments;
+    }
+}
