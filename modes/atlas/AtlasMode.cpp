@@ -197,6 +197,16 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     atlas::AtlasOptions atlasOptions;
     atlasOptions.size = static_cast<int>(mSettings.getInt(kAtlasResolution));
     g->atlas = atlas::buildAtlas(scene, atlasOptions);
+    // The generator leaves out triangles that found no texel and no room for a chart of their own
+    // (sub-texel triangles of large scenes); the mode needs every triangle in the atlas.
+    std::size_t inAtlas = 0;
+    for (const std::vector<std::uint32_t>& sources : g->atlas.triangleSources) inAtlas += sources.size();
+    if (inAtlas != scene.triangleCount()) {
+        throw Error("atlas: " + std::to_string(scene.triangleCount() - inAtlas) + " of " +
+                    std::to_string(scene.triangleCount()) + " triangles found no room in a " +
+                    std::to_string(atlasOptions.size) + "^2 atlas (" + std::to_string(g->atlas.stats.charts) +
+                    " charts, texels too coarse for them); raise atlas_resolution");
+    }
     g->link = atlas::linkAtlas(scene, g->atlas);
     const atlas::AtlasLink& link = g->link;
     g->tables = atlasmode::buildAtlasTables(g->atlas, link);
