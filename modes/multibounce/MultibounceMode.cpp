@@ -6,6 +6,7 @@
 #include "bundle/DirectionSampler.h"
 #include "gpu/CameraPass.h"
 #include "gpu/ShadowCubePass.h"
+#include "modes/multibounce/SurfacePoints.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
 #include "vk/Descriptors.h"
@@ -45,6 +46,13 @@ std::vector<ParamSpec> MultibounceMode::parameters() {
          "node storage limit of the bundle pool (0: half the largest device-local heap); an iteration that needs more is "
          "refused",
          0, 1 << 20, {}},
+        {kBundles, std::string("perfect"), "",
+         "perfect: bundles of the scene's triangles; imperfect: of point splats ([TO12p])", 0, 0, {"perfect", "imperfect"}},
+        {kPoints, std::int64_t{16384}, "points",
+         "imperfect bundles: points per direction, uniform by area, a different set per direction", 16, 1 << 22, {}},
+        {kSplatScale, 2.0, "",
+         "imperfect bundles: disc radius in units of sqrt(area / (pi points)); larger: fewer holes, more redundant nodes",
+         0.05, 20.0, {}},
     };
 }
 
@@ -60,6 +68,8 @@ struct MultibounceMode::Gpu {
     std::unique_ptr<gpu::ShadowCubePass> shadows;
     std::unique_ptr<BundlePool> pool;
     std::unique_ptr<DirectionSampler> directions;
+    std::unique_ptr<SurfacePoints> points; // imperfect bundles only
+    vk::Buffer noPoints;                   // perfect bundles: the points binding's placeholder
     vk::Buffer emitters;
     std::uint32_t emitterCount = 0;
     vk::DescriptorSetLayout setLayout;
@@ -80,8 +90,20 @@ std::vector<PlannedPass> MultibounceMode::plan(const Scene& scene) const {
     const auto k = std::to_string(mSettings.getInt(kBundleCount));
     const auto r = std::to_string(mSettings.getInt(kBundleResolution));
     std::vector<PlannedPass> p;
-    p.push_back({"bundle build", true, k + " bundles of " + r + "^2 pixels over " + std::to_string(f.triangles) +
-                                           " triangles, with hit payload, every iteration"});
+    if (imperfect()) {
+        const auto n = std::to_string(mSettings.getInt(kPoints));
+        p.push_back({"surface points", true,
+                     k + " x " + n + " points uniform by area over " + std::to_string(f.triangles) +
+                         " triangles (a different set per direction), every iteration" +
+                         (f.textured ? "; UVs interpolated" : "; no textures: UVs not interpolated")});
+        p.push_back({"bundle build", true, k + " bundles of " + r + "^2 pixels from " + n +
+                                               " point splats each (splat_scale " +
+                                               formatValue(mSettings.getDouble(kSplatScale)) +
+                                               "), with hit payload, every iteration"});
+    } else {
+        p.push_back({"bundle build", true, k + " bundles of " + r + "^2 pixels over " + std::to_string(f.triangles) +
+                                               " triangles, with hit payload, every iteration"});
+    }
     p.push_back({"bundle sort", true, "depth order per pixel: the next vertex is one step from the point's depth"});
     if (f.shadowCastingLights() == 0) {
         p.push_back({"shadow maps", false, "no point or spot lights"});
@@ -140,6 +162,14 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     constexpr std::uint32_t kOtherScopes = 8;
     g->timer = vk::GpuTimer(*ctx, 2 * slots + kOtherScopes);
 
+    if (imperfect()) {
+        g->points = std::make_unique<SurfacePoints>(*ctx, *g->scene, slots, static_cast<std::uint32_t>(mSettings.getInt(kPoints)),
+                                                    mSettings.getDouble(kSplatScale));
+    } else {
+        g->noPoints = vk::Buffer(*ctx, sizeof(shader::MultibouncePoint), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                 vk::MemoryUse::Device);
+    }
+
     std::vector<shader::MultibounceEmitter> emitters;
     for (const gpu::GpuDraw& d : g->scene->draws()) {
         emitters.push_back({scene.meshes[d.mesh].emission, d.firstIndex / 3});
@@ -153,14 +183,17 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->setLayout = vk::makeDescriptorSetLayout(
         device, {{shader::kMultibounceBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                  {shader::kMultibounceBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kMultibounceBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
-    g->descriptorPool = vk::DescriptorPool(device, 1, 2);
+                 {shader::kMultibounceBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kMultibounceBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
+    g->descriptorPool = vk::DescriptorPool(device, 1, 3);
     g->set = g->descriptorPool.allocate(g->setLayout.get());
     vk::DescriptorWriter()
         .buffer(shader::kMultibounceBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
         .image(shader::kMultibounceBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->shadows->maps().view(),
                VK_IMAGE_LAYOUT_GENERAL)
         .buffer(shader::kMultibounceBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->emitters.get())
+        .buffer(shader::kMultibounceBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                g->points ? g->points->pointBuffer() : g->noPoints.get())
         .update(device, g->set);
     VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
     g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::MultibouncePush), cs);
@@ -183,8 +216,13 @@ void MultibounceMode::buildBundles(const IterationInfo& info) {
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
             g.pool->recordReset(cmd);
+            if (g.points) {
+                g.points->record(cmd, static_cast<std::uint32_t>(info.seed), mIterations, info.time, &g.timer);
+            }
             for (std::uint32_t k = 0; k < slots; ++k) {
-                g.pool->recordBuild(cmd, k, frames[k], BundleGeometry::triangles(info.time), &g.timer);
+                const BundleGeometry geometry = g.points ? BundleGeometry::pointSplats(g.points->splats(k), g.points->perDirection())
+                                                         : BundleGeometry::triangles(info.time);
+                g.pool->recordBuild(cmd, k, frames[k], geometry, &g.timer);
             }
             for (std::uint32_t k = 0; k < slots; ++k) {
                 g.pool->recordSort(cmd, k, &g.timer);
@@ -247,6 +285,7 @@ void MultibounceMode::iterate(const IterationInfo& info) {
     push.hemispherePdf = g.directions->hemispherePdf(glm::vec3(0.0f, 0.0f, 1.0f));
     push.samplePosition = sample.samplePosition;
     push.pathsPerPixel = pathsPerPixel();
+    push.pointsPerDirection = g.points ? g.points->perDirection() : 0u;
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         if (renderShadows) {

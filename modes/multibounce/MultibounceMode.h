@@ -22,8 +22,16 @@
 // iteration needed and refuses (bl::Error, with the numbers) what the device or memory_cap_mib
 // cannot hold.
 //
-// Not yet: textured albedo beyond the camera's first vertex (the material's albedo is used there),
-// imperfect bundles (point splats, the poster).
+// Imperfect bundles ([TO12p], bundles = imperfect): each bundle is built from its own set of
+// `points` points uniform by area over all surfaces (SurfacePoints: a GPU pass over an area CDF),
+// drawn as tangent-plane triangle splats cut to discs of radius splat_scale * sqrt(A / (pi N)).
+// Paths step through them exactly as through perfect bundles; a vertex on a splat takes the
+// point's shading normal, material and triangle (emission). Holes let light leak through surfaces
+// and overlapping discs add redundant nodes (the trade-off over splat_scale: README).
+//
+// Not yet: textured albedo beyond the camera's first vertex (the material's albedo is used there;
+// perfect bundles' payload and imperfect bundles' points carry the UV, but the path pass has no
+// texture table: that needs descriptor indexing, which the core device does not enable).
 //
 // Parameters (`bundlelab modes`):
 //   bundle_count       64      bundles       resident bundles per iteration (K)
@@ -35,6 +43,9 @@
 //   shadow_resolution  512     texels        side of each shadow cube face
 //   memory_cap_mib     0       MiB           node storage limit of the bundle pool (0: half the
 //                                            largest device-local heap)
+//   bundles            perfect               perfect (the scene's triangles) or imperfect (point splats)
+//   points             16384   points        imperfect: points per direction (a different set each)
+//   splat_scale        2.0                   imperfect: disc radius in units of sqrt(A / (pi N))
 #pragma once
 
 #include "modes/Mode.h"
@@ -54,6 +65,9 @@ public:
     static constexpr const char* kRrSegments = "rr_segments";
     static constexpr const char* kShadowResolution = "shadow_resolution";
     static constexpr const char* kMemoryCap = "memory_cap_mib";
+    static constexpr const char* kBundles = "bundles";
+    static constexpr const char* kPoints = "points";
+    static constexpr const char* kSplatScale = "splat_scale";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);
@@ -73,6 +87,7 @@ private:
     struct Gpu;
     void buildBundles(const IterationInfo& info);
     std::uint32_t pathsPerPixel() const { return static_cast<std::uint32_t>(mSettings.getInt(kPathsPerPixel)); }
+    bool imperfect() const { return mSettings.getString(kBundles) == "imperfect"; }
 
     Settings mSettings;
     const Scene* mScene = nullptr;

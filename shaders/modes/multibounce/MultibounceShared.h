@@ -12,6 +12,7 @@ BL_CONST uint kMultibounceSet = 1u;
 BL_CONST uint kMultibounceBindingLights = 0u;     // storage GpuLight[]
 BL_CONST uint kMultibounceBindingShadowMaps = 1u; // storage image 2D array (r32f), 6 layers per light
 BL_CONST uint kMultibounceBindingEmitters = 2u;   // storage MultibounceEmitter[] (one per draw)
+BL_CONST uint kMultibounceBindingPoints = 3u;     // storage MultibouncePoint[] (imperfect bundles)
 
 // Emission of the triangles of one draw: triangle id t belongs to the last entry with
 // firstTriangle <= t (entries in GpuScene draw order, so firstTriangle ascends). Radiance of the
@@ -38,11 +39,52 @@ struct MultibouncePush {
     float hemispherePdf;       // p_r(d) of a bundle direction on a point's hemisphere: 1 / (2 pi)
     vec2 samplePosition;       // sub-pixel position of this iteration's camera sample, in [0, 1)^2
     uint pathsPerPixel;        // camera paths per pixel through this iteration's bundles
-    uint pad0;
+    uint pointsPerDirection;   // imperfect bundles: splats of each bundle (bundle k's are points
+                               // k * pointsPerDirection ...); 0: perfect bundles of triangles
 };
 BL_STATIC_ASSERT(sizeof(MultibouncePush) == 128, "MultibouncePush layout");
 
 BL_CONST uint kMultibounceGroupSize = 8u;
+
+// Imperfect bundles ([TO12p]): what a path vertex found on a point splat needs beyond the bundle's
+// hit payload, per point (the payload's id is the point's index within its direction's set).
+struct MultibouncePoint {
+    uint normal;   // octahedral shading normal (interpolated vertex normals), world space
+    uint triangle; // the triangle the point was sampled on (GpuScene order): its emission
+    vec2 uv;       // material texture coordinates at the point
+};
+BL_STATIC_ASSERT(sizeof(MultibouncePoint) == 16, "MultibouncePoint layout");
+
+// Point pass: the scene's draws at the iteration's time, for the triangle -> draw search.
+struct MultibounceDraw {
+    mat4 model;         // rigid transform at the bundles' time
+    uint firstTriangle; // global index of the draw's first triangle (ascending over the table)
+    uint material;
+    uint vertexOffset;
+    uint pad0;
+};
+BL_STATIC_ASSERT(sizeof(MultibounceDraw) == 80, "MultibounceDraw layout");
+
+BL_CONST uint kMultibouncePointsBindingCdf = 0u;      // storage float[]: area CDF over triangles
+BL_CONST uint kMultibouncePointsBindingDraws = 1u;    // storage MultibounceDraw[]
+BL_CONST uint kMultibouncePointsBindingVertices = 2u; // storage GpuVertex[]
+BL_CONST uint kMultibouncePointsBindingIndices = 3u;  // storage uint[]
+BL_CONST uint kMultibouncePointsBindingPlanes = 4u;   // storage vec4[] (GpuScene planes)
+BL_CONST uint kMultibouncePointsBindingSplats = 5u;   // storage BundleSplat[] (written)
+BL_CONST uint kMultibouncePointsBindingPoints = 6u;   // storage MultibouncePoint[] (written)
+
+struct MultibouncePointsPush {
+    uint seed;
+    uint iteration;
+    uint count;         // points in all: directions * pointsPerDirection
+    uint pointsPerDirection;
+    uint triangleCount;
+    uint drawCount;
+    float radius;       // splat radius, world units
+    uint textured;      // 0: no material has a texture, UVs are not interpolated (left 0)
+};
+BL_STATIC_ASSERT(sizeof(MultibouncePointsPush) == 32, "MultibouncePointsPush layout");
+BL_CONST uint kMultibouncePointsGroupSize = 64u;
 
 // Russian roulette never keeps a path with probability above this: a path whose throughput stays
 // near 1 (white furnace) still ends, at the cost of 5% more variance per surviving segment.

@@ -9,6 +9,7 @@
 // front face, point/spot light by cube shadow maps, the environment when the path escapes.
 // Weights are f cos / p_r; Russian roulette after push.rrSegments segments.
 #include "modes/multibounce/MultibounceShared.h"
+#include "modes/multibounce/DrawSearch.glsl"
 #include "bundle/Traversal.glsl"
 #include "shared/Brdf.h"
 #include "shared/Lights.h"
@@ -26,24 +27,18 @@ layout(set = kMultibounceSet, binding = kMultibounceBindingLights) readonly buff
 layout(set = kMultibounceSet, binding = kMultibounceBindingEmitters) readonly buffer EmitterBlock {
     MultibounceEmitter emitters[];
 };
+layout(set = kMultibounceSet, binding = kMultibounceBindingPoints) readonly buffer PointBlock {
+    MultibouncePoint points[];
+};
 layout(push_constant) uniform PushBlock { MultibouncePush push; };
 
 // Layer of a contribution whose path has `segments` segments (1 = emitted, 2 = direct, ...).
 uint layerOf(uint segments) { return min(segments, kPathLayerCount) - 1u; }
 
-// Emitted radiance of triangle `id`'s front face: binary search of the draw that holds it.
-vec3 emissionOf(uint id) {
-    uint lo = 0u, hi = push.emitterCount;
-    while (hi - lo > 1u) {
-        uint mid = (lo + hi) / 2u;
-        if (emitters[mid].firstTriangle <= id) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    return emitters[lo].emission;
-}
+BL_DEFINE_DRAW_SEARCH(emitterOf, emitters)
+
+// Emitted radiance of triangle `id`'s front face: that of the draw that holds it.
+vec3 emissionOf(uint id) { return emitters[emitterOf(id, push.emitterCount)].emission; }
 
 // Point and spot lights at x (normal n turned toward wo), visibility from the cube shadow maps.
 vec3 directLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
@@ -131,10 +126,19 @@ void tracePath(vec3 x0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 emitted, uin
         x = frame.origin + (float(bundlePixel.x) + 0.5) * frame.pixelSize * frame.axisX +
             (float(bundlePixel.y) + 0.5) * frame.pixelSize * frame.axisY + node.depth * frame.direction;
         wo = -d;
-        vec3 shading = blUnpackOctahedral(payload.normal);
+        uint triangle = payload.id;
+        uint packedNormal = payload.normal;
+        if ((payload.material & kBundleHitSplat) != 0u) {
+            // Imperfect bundles: a splat of bundle k's point set; its point holds the shading
+            // normal and the triangle it was sampled on (the splat's face bit is that triangle's).
+            MultibouncePoint point = points[k * push.pointsPerDirection + payload.id];
+            triangle = point.triangle;
+            packedNormal = point.normal;
+        }
+        vec3 shading = blUnpackOctahedral(packedNormal);
         n = dot(shading, wo) >= 0.0 ? shading : -shading; // two-sided reflection
-        if (blBundleFacesBack(node.next, side) && (payload.material & kBundleHitSplat) == 0u) {
-            layers[layerOf(segments + 1u)] += throughput * emissionOf(payload.id); // front faces emit
+        if (blBundleFacesBack(node.next, side)) {
+            layers[layerOf(segments + 1u)] += throughput * emissionOf(triangle); // front faces emit
         }
         m = materials[payload.material & kBundleHitMaterialMask];
         albedo = m.albedo; // textured albedo beyond the first vertex: not yet (MultibounceMode.h)
