@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstring>
 #include <modes/bidir/BidirShared.h>
+#include <modes/bidir/Suppression.h>
 #include <modes/bidir/evaluate.comp.spv.h>
 
 namespace bl {
@@ -24,6 +25,12 @@ constexpr double kMiB = 1024.0 * 1024.0;
 // shadow grazing receivers), and 1e-3 of the scene is far below any feature the cube resolves at
 // its 256^2 default (a texel spans ~4e-3 of the scene at unit distance).
 constexpr float kVplLiftFraction = 1e-3f;
+
+std::uint32_t suppressionOf(const std::string& name) {
+    if (name == "clamp") return shader::kBidirSuppressionClamp;
+    if (name == "roughness") return shader::kBidirSuppressionRoughness;
+    return shader::kBidirSuppressionNone;
+}
 
 std::uint32_t strategyOf(const std::string& name) {
     if (name == "vpl") return shader::kBidirStrategyVpl;
@@ -46,6 +53,17 @@ std::vector<ParamSpec> BidirMode::parameters() {
         {kDirections, std::string("random"), "", "bundle direction sequence", 0, 0, {"random", "halton"}},
         {kMemoryCap, std::int64_t{2048}, "MiB", "node storage limit of the bundle pool; a frame that needs more is refused",
          1, 1 << 20, {}},
+        {kBounces, std::int64_t{2}, "", "indirect bounces: 1 (Eq. 3-6) or 2 (also Eq. 7-8, layer indirect2)", 1, 2, {}},
+        {kSuppression, std::string("none"), "",
+         "glossy artifact suppression ([TO12] section 5): none (unbiased), clamp (the lobe truncated at d/m) or "
+         "roughness (its exponent lowered to that peak, Eq. 10-12)",
+         0, 0, {"none", "clamp", "roughness"}},
+        {kSuppressionNeighbours, 16.0, "samples", "m' of the suppression's neighbour count m = m' f cos / D ([TO12]: 16)",
+         1e-3, 1e6, {}},
+        {kTwoBounceClamp, 0.0, "scene radius",
+         "two-bounce term only: |x1 - x2| taken as at least this fraction of the scene's bounding radius (0: off, "
+         "unbiased)",
+         0.0, 1.0, {}},
     };
 }
 
@@ -81,25 +99,29 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
     const std::string strategy = mSettings.getString(kStrategy);
     const auto pairs = std::to_string(mSettings.getInt(kPairs));
     const bool lights = f.shadowCastingLights() > 0;
+    const bool twoBounce = mSettings.getInt(kBounces) >= 2;
     std::vector<PlannedPass> p;
     p.push_back({"gbuffer", true, std::to_string(f.triangles) + " triangles, jittered every frame"});
     p.push_back({"light shadow cubes", lights,
                  lights ? std::to_string(f.shadowCastingLights()) + " light(s) x 6 faces; " +
                               (f.animated ? "every frame (animated scene)" : "once (static scene)")
                         : "no point or spot lights"});
-    const bool vpl = lights && strategy != "bundle";
+    const bool vpl = lights && (strategy != "bundle" || twoBounce);
     p.push_back({"VPL rays + VPL shadow cubes", vpl,
                  !lights ? "no point or spot light to start light paths"
                  : vpl   ? pairs + " VPLs per frame (CPU rays, Embree), a " +
-                             std::to_string(mSettings.getInt(kVplShadowResolution)) + "^2 cube each"
-                         : "strategy = bundle uses no VPL"});
-    const bool bundles = lights && strategy != "vpl";
+                             std::to_string(mSettings.getInt(kVplShadowResolution)) + "^2 cube each" +
+                             (strategy == "bundle" ? " (for the two-bounce term only)" : "")
+                         : "strategy = bundle with bounces = 1 uses no VPL"});
+    const bool bundles = lights && (strategy != "vpl" || twoBounce);
     p.push_back({"bundle builds", bundles,
                  !lights  ? "no point or spot light: nothing for camera paths to reach"
                  : bundles ? pairs + " bundles of " + std::to_string(mSettings.getInt(kBundleResolution)) +
-                                 "^2 with hit payload per frame"
-                           : "strategy = vpl uses no bundle"});
-    p.push_back({"evaluate", true, lights ? "direct + one-bounce (" + strategy + ") at every visible point"
+                                 "^2 with hit payload per frame" +
+                                 (strategy == "vpl" ? " (for the two-bounce term only)" : "")
+                           : "strategy = vpl with bounces = 1 uses no bundle"});
+    p.push_back({"evaluate", true, lights ? "direct + one-bounce (" + strategy + ")" +
+                                                (twoBounce ? " + two-bounce" : "") + " at every visible point"
                                           : "no point/spot light: emitters and environment background only"});
     if (f.emissiveMeshes || f.environment) {
         p.push_back({"area/environment light", false, "not lit by bidir yet: use reference or multibounce"});
@@ -121,6 +143,7 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     const auto shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
     const auto vplSide = static_cast<VkDeviceSize>(mSettings.getInt(kVplShadowResolution));
     const std::uint32_t strategy = strategyOf(mSettings.getString(kStrategy));
+    const bool twoBounce = mSettings.getInt(kBounces) >= 2;
     ctx->requireDeviceMemory(VkDeviceSize(width) * height * gpu::CameraPass::bytesPerPixel(shader::kBidirAccumLayers) +
                                  shadowSide * shadowSide * 4 * (6 * scene.lights.size() + 1) +
                                  vplSide * vplSide * 4 * (6 * pairs + 1),
@@ -137,10 +160,11 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
                               vk::MemoryUse::Upload);
     g->bounds = scene.bounds();
 
-    if (strategy != shader::kBidirStrategyVpl && g->shadows->lightCount() > 0) {
+    if ((strategy != shader::kBidirStrategyVpl || twoBounce) && g->shadows->lightCount() > 0) {
         if (!ctx->geometryShader()) {
-            throw Error("bidir: strategy " + mSettings.getString(kStrategy) +
-                        " needs bundle hit payloads (gl_PrimitiveID: geometry shaders); use strategy=vpl");
+            throw Error("bidir: strategy " + mSettings.getString(kStrategy) + " with bounces = " +
+                        std::to_string(mSettings.getInt(kBounces)) +
+                        " needs bundle hit payloads (gl_PrimitiveID: geometry shaders); use strategy=vpl bounces=1");
         }
         const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
         BundlePoolOptions options;
@@ -236,7 +260,8 @@ void BidirMode::iterate(const IterationInfo& info) {
     if (g.pool) {
         buildBundles(info);
     }
-    const bool useVpls = lightCount > 0 && strategy != shader::kBidirStrategyBundle;
+    const bool twoBounce = mSettings.getInt(kBounces) >= 2;
+    const bool useVpls = lightCount > 0 && (strategy != shader::kBidirStrategyBundle || twoBounce);
     std::vector<shader::BidirVpl> vpls(pairs);
     if (useVpls) {
         vpls = g.vpls->sample(std::uint64_t(mIterations) * pairs, pairs, static_cast<std::uint32_t>(info.seed), info.time,
@@ -266,10 +291,14 @@ void BidirMode::iterate(const IterationInfo& info) {
     push.strategy = strategy;
     // Uniform directions: every direction of a hemisphere has the same density (the axis is arbitrary).
     push.hemispherePdf = g.directions->hemispherePdf(glm::vec3(0.0f, 0.0f, 1.0f));
-    push.lightSelectPdf = lightCount > 0 ? 1.0f / float(lightCount) : 0.0f;
+    push.suppression = suppressionOf(mSettings.getString(kSuppression));
+    push.suppressionNeighbours = static_cast<float>(mSettings.getDouble(kSuppressionNeighbours));
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
     push.environmentRotation = g.scene->environmentRotation();
     push.samplePosition = sample.samplePosition;
+    push.bounces = static_cast<std::uint32_t>(mSettings.getInt(kBounces));
+    const float minDistance = static_cast<float>(mSettings.getDouble(kTwoBounceClamp)) * g.bounds.radius();
+    push.twoBounceMinDistance2 = minDistance * minDistance;
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         if (renderShadows) {

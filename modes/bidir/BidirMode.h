@@ -22,8 +22,23 @@
 //   vpl_shadow_resolution  256      texels per face side of each VPL's shadow cube
 //   directions             random   bundle directions: random or halton
 //   memory_cap_mib         2048     bundle node pool limit (a frame that needs more is refused)
+//   bounces                2        1: one-bounce only; 2: also the two-bounce term (Eq. 7-8): the
+//                                   path light -> VPL k -> bundle k's hit -> x, visibility VPL-hit
+//                                   from VPL k's shadow cube, layer `indirect2`. It needs both a VPL
+//                                   and a bundle per pair, whatever `strategy` says.
+//   two_bounce_clamp       0        clamping of the two-bounce term only: |x1 - x2| is taken as at
+//                                   least this fraction of the scene's bounding radius in G(x1, x2)
+//                                   (0: off, unbiased). A bias: energy lost near corners, measured
+//                                   in tests/modes/bidir/BidirTest.cpp and papers/tokuyoshi-ogaki-2012.md.
+//   suppression            none     glossy artifact suppression ([TO12] section 5,
+//                                   shaders/modes/bidir/Suppression.h): none | clamp | roughness, at
+//                                   both vertices of one-bounce paths (densities of Eq. 13-17 from
+//                                   N = K pairs per frame, so the bias stays as frames accumulate)
+//                                   and at x of two-bounce paths (Eq. 14); the lights' direct term
+//                                   is never suppressed.
+//   suppression_neighbours 16       m' ([TO12]: 16)
 //
-// Not yet: two-bounce (Eq. 7-8), roughness clamping (Eq. 9-17), interleaved sampling, reflective
+// Not yet: interleaved sampling, reflective
 // shadow maps on the GPU (VPL rays are traced on the CPU), textured albedo at VPLs and bundle hits
 // (their material's albedo is used), area emitters and environment light (not lit here).
 #pragma once
@@ -46,6 +61,10 @@ public:
     static constexpr const char* kVplShadowResolution = "vpl_shadow_resolution";
     static constexpr const char* kDirections = "directions";
     static constexpr const char* kMemoryCap = "memory_cap_mib";
+    static constexpr const char* kBounces = "bounces";
+    static constexpr const char* kTwoBounceClamp = "two_bounce_clamp";
+    static constexpr const char* kSuppression = "suppression";
+    static constexpr const char* kSuppressionNeighbours = "suppression_neighbours";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);

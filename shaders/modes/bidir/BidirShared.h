@@ -49,13 +49,13 @@ struct BidirPush {
     uint vplResolution;        // texels per VPL cube-face side
     uint strategy;             // kBidirStrategy*
     float hemispherePdf;       // p_r(d) of a bundle direction on a point's hemisphere: 1 / (2 pi)
-    float lightSelectPdf;      // P(light): 1 / lightCount
+    float suppressionNeighbours; // m' of [TO12] section 5 (Suppression.h)
     uint environmentPresent;
     float environmentRotation; // radians about +y
-    uint pad0;
+    uint bounces;              // 1: one-bounce only; 2: also the two-bounce term ([TO12] Eq. 7-8)
     vec2 samplePosition;       // sub-pixel position of this frame's camera sample, in [0, 1)^2
-    uint pad1;
-    uint pad2;
+    float twoBounceMinDistance2; // clamping of the two-bounce term only: |x1 - x2|^2 >= this (0: off)
+    uint suppression;          // kBidirSuppression* (Suppression.h)
 };
 BL_STATIC_ASSERT(sizeof(BidirPush) == 128, "BidirPush layout");
 
@@ -72,9 +72,10 @@ BL_INLINE float blBidirEmissionPdf(GpuLight l, vec3 omega) {
     return dot(omega, l.direction) > l.cosOuter ? 0.5f * kInvPi / (1.0f - l.cosOuter) : 0.0f;
 }
 
-// Layers bidir writes: visible emitters (1 segment), direct light by shadow maps (2) and one
-// indirect bounce (3, the estimator of [TO12] Eq. 3-6).
-BL_CONST uint kBidirAccumLayers = (1u << kPathEmitted) | (1u << kPathDirect) | (1u << kPathIndirect1);
+// Layers bidir writes: visible emitters (1 segment), direct light by shadow maps (2), one
+// indirect bounce (3, the estimator of [TO12] Eq. 3-6) and two (4, Eq. 7-8; zero with bounces = 1).
+BL_CONST uint kBidirAccumLayers =
+    (1u << kPathEmitted) | (1u << kPathDirect) | (1u << kPathIndirect1) | (1u << kPathIndirect2);
 
 BL_NAMESPACE_END
 #endif

@@ -10,12 +10,15 @@
 // Each term is I f_{0,j,x} f_{j,x,4} G / p_A with the path's geometry, and MIS weighs it by
 // p_A,j / (p_A1 + p_A2) (balance heuristic): the ratio equals EQUATIONS.md's p1/p2, both densities
 // of the same vertex in the same (area) measure. The mean over the K pairs is one sample of the
-// indirect1 layer; direct light comes from the lights' shadow cubes as in `raster`.
+// indirect1 layer; direct light comes from the lights' shadow cubes as in `raster`. With
+// bounces = 2 pair k also gives the two-bounce path x0 -> VPL k -> bundle k's hit -> x (Eq. 7-8,
+// one strategy, no MIS), the mean over the pairs one sample of the indirect2 layer.
 #include "modes/bidir/BidirShared.h"
 #include "bundle/Traversal.glsl"
 #include "shared/Brdf.h"
 #include "shared/Lights.h"
 #include "shared/Octahedral.h"
+#include "modes/bidir/Suppression.h"
 #define BL_ACCUM_LAYERS kBidirAccumLayers
 #include "gpu/CameraSet.glsl"
 #define BL_SHADOW_SET kBidirSet
@@ -31,10 +34,30 @@ layout(push_constant) uniform PushBlock { BidirPush push; };
 
 const uint kBidirMapVpl = 1u; // blShadowVisibilityIn's map 1: the VPLs' cubes (map 0: the lights')
 
+// Directional sample densities (samples per steradian, [TO12] Eq. 15-17) of the one-bounce path
+// x0 -> y -> x whose middle vertex y has area densities pA1 (VPL strategy) and pA2 (bundle
+// strategy), pLight = P(l) p_e of the light ray: with p the density of the strategy in use (the
+// sum for MIS) and N = K pairs, d_{y,0} = N p |y - x0|^2 / cos_{y,0} = N p pLight / pA1 and
+// d_{y,3} = N p |y - x|^2 / cos_{y,3} = N p p_r / pA2; dY = 1 / (1 / d_{y,0} + 1 / d_{y,3})
+// (Eq. 13) at y, dX = d_{y,3} at x (the camera side is a delta). Zero densities give +inf.
+void oneBounceDensities(float pA1, float pA2, float pLight, out float dY, out float dX) {
+    float p = push.strategy == kBidirStrategyVpl ? pA1 : (push.strategy == kBidirStrategyBundle ? pA2 : pA1 + pA2);
+    float np = float(push.pairs) * p;
+    float inv0 = np > 0.0 && pLight > 0.0 ? pA1 / (np * pLight) : 0.0;
+    float inv3 = np > 0.0 ? pA2 / (np * push.hemispherePdf) : 0.0;
+    dY = inv0 + inv3 > 0.0 ? 1.0 / (inv0 + inv3) : 1e30;
+    dX = inv3 > 0.0 ? 1.0 / inv3 : 1e30;
+}
+
 // Light l's direct light reflected at point p (normal n turned toward wo) toward wo, by its shadow
-// cube; with the light ray's solid-angle density P(l) p_e and geometry when asked (MIS).
-vec3 lightAt(uint l, vec3 p, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, out float areaPdf) {
+// cube; with the light ray's area density P(l) p_e cos / r^2 of p (MIS). pOther >= 0: p is the
+// middle vertex of a one-bounce path whose bundle strategy has area density pOther: the BRDF at p
+// is suppressed by its sample density (Suppression.h) and dX returns the density at the path's
+// camera end; pOther < 0: direct light, no suppression.
+vec3 lightAt(uint l, vec3 p, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float pOther, out float areaPdf,
+             out float dX) {
     areaPdf = 0.0;
+    dX = 1e30;
     GpuLight light = lights[l];
     vec3 d = p - light.position;
     float r2 = dot(d, d);
@@ -48,48 +71,90 @@ vec3 lightAt(uint l, vec3 p, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, out fl
     if (cosine <= 0.0 || profile <= 0.0) {
         return vec3(0.0); // lit on the side wo does not see, or outside the spot cone
     }
-    areaPdf = push.lightSelectPdf * blBidirEmissionPdf(light, fromLight) * cosine / r2;
+    float pLight = blBidirEmissionPdf(light, fromLight) / float(push.lightCount);
+    areaPdf = pLight * cosine / r2;
     float visibility = blShadowVisibility(kShadowCubeFaces * l, push.shadowResolution, d, n);
     if (visibility <= 0.0) {
         return vec3(0.0);
     }
-    return blEvalBrdf(m, albedo, n, wi, wo) * light.intensity * (profile * visibility * cosine / r2);
+    float dY = 0.0; // no suppression
+    if (pOther >= 0.0) {
+        oneBounceDensities(areaPdf, pOther, pLight, dY, dX);
+    }
+    vec3 f = blBidirEvalBrdf(m, albedo, n, wi, wo, dY, push.suppression, push.suppressionNeighbours);
+    return f * light.intensity * (profile * visibility * cosine / r2);
+}
+
+// The edge from point p (normal n turned toward the side it reflects on) to VPL k, shared by the
+// one-bounce (p = x) and two-bounce (p = the bundle hit) terms: false when the VPL is invalid, p
+// lies behind it or it behind p (reflection, not transmission), or its shadow cube hides p.
+// Else wi (p toward the VPL), r2 = |VPL - p|^2, the cosines at p and at the VPL, visibility.
+bool vplEdge(uint k, vec3 p, vec3 n, out BidirVpl v, out vec3 wi, out float r2, out float cosP, out float cosV,
+             out float visibility) {
+    v = vpls[k];
+    wi = vec3(0.0);
+    cosP = cosV = visibility = 0.0;
+    vec3 toVpl = v.position - p;
+    r2 = dot(toVpl, toVpl);
+    if (v.valid == 0u || !(r2 > 0.0)) {
+        return false;
+    }
+    wi = toVpl * inversesqrt(r2);
+    cosP = dot(n, wi);
+    cosV = -dot(v.normal, wi);
+    if (cosP <= 0.0 || cosV <= 0.0) {
+        return false;
+    }
+    visibility = blShadowVisibilityIn(kBidirMapVpl, kShadowCubeFaces * k, push.vplResolution, p - v.cubeCentre, n);
+    return visibility > 0.0;
 }
 
 // Strategy j = 1 of pair k at x.
 vec3 vplTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
-    BidirVpl v = vpls[k];
-    if (v.valid == 0u) {
+    BidirVpl v;
+    vec3 wi;
+    float r2, cosX, cosY, visibility;
+    if (!vplEdge(k, x, n, v, wi, r2, cosX, cosY, visibility)) {
         return vec3(0.0);
     }
-    vec3 toVpl = v.position - x;
-    float r2 = dot(toVpl, toVpl);
-    if (!(r2 > 0.0)) {
-        return vec3(0.0);
-    }
-    vec3 wi = toVpl * inversesqrt(r2);
-    float cosX = dot(n, wi);
-    float cosY = -dot(v.normal, wi); // x must lie on the VPL's lit side: reflection, not transmission
-    if (cosX <= 0.0 || cosY <= 0.0) {
-        return vec3(0.0);
-    }
-    float visibility = blShadowVisibilityIn(kBidirMapVpl, kShadowCubeFaces * k, push.vplResolution, x - v.cubeCentre, n);
-    if (visibility <= 0.0) {
-        return vec3(0.0);
-    }
-    vec3 fy = blEvalBrdf(materials[v.material], v.albedo, v.normal, v.toLight, -wi);
-    vec3 fx = blEvalBrdf(m, albedo, n, wi, wo);
+    float p2 = push.hemispherePdf * cosY / r2; // the bundle strategy's area density of y
+    float dY, dX;
+    oneBounceDensities(v.areaPdf, p2, v.pdfLight, dY, dX);
+    vec3 fy = blBidirEvalBrdf(materials[v.material], v.albedo, v.normal, v.toLight, -wi, dY, push.suppression,
+                              push.suppressionNeighbours);
+    vec3 fx = blBidirEvalBrdf(m, albedo, n, wi, wo, dX, push.suppression, push.suppressionNeighbours);
     // I f_y f_x G(y, x) / (P(l) p_e): the light ray's own cos/r^2 cancels against its area pdf.
     vec3 estimate = v.intensity * fy * fx * (visibility * cosX * cosY / (r2 * v.pdfLight));
     if (push.strategy == kBidirStrategyVpl) {
         return estimate;
     }
-    float p2 = push.hemispherePdf * cosY / r2; // the bundle strategy's area density of y
     return estimate * (v.areaPdf / (v.areaPdf + p2));
 }
 
-// Strategy j = 2 of pair k at x.
-vec3 bundleTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
+// Two-bounce path x0 -> x1 = VPL k -> x2 = y -> x ([TO12] Eq. 7-8), y the bundle hit of pair k
+// (normal ny turned toward x, BRDF my) reached from x along d: everything but x's own factor
+// f_{2,3,4} (n3.w_{3,2}) / p_r, which the caller shares with the one-bounce bundle term:
+//   I f_{0,1,2} f_{1,2,3} G(x1, x2) V(x1, x2) / (P(l) p_e(w_{0,1})),
+// the path's density p_{1,2} of Eq. 8 being P(l) p_e p_r |x1 - x2|^2 / (cos1 cos2). Visibility
+// x1 - x2 from the VPL's shadow cube, shared with its one-bounce term. Clamping (this term
+// only): |x1 - x2|^2 >= push.twoBounceMinDistance2, a bias stated in BidirMode.h.
+vec3 twoBounceTerm(uint k, vec3 y, vec3 ny, GpuMaterial my, vec3 wy) {
+    BidirVpl v;
+    vec3 wi;
+    float r2, cos2, cos1, visibility; // cos2 at x2 = y, cos1 at x1 = the VPL
+    if (!vplEdge(k, y, ny, v, wi, r2, cos2, cos1, visibility)) {
+        return vec3(0.0);
+    }
+    vec3 f1 = blEvalBrdf(materials[v.material], v.albedo, v.normal, v.toLight, -wi);
+    // Textured albedo at y: not yet (the material's albedo; BidirMode.h says so).
+    vec3 f2 = blEvalBrdf(my, my.albedo, ny, wi, wy);
+    float g = visibility * cos1 * cos2 / max(r2, push.twoBounceMinDistance2);
+    return v.intensity * f1 * f2 * (g / v.pdfLight);
+}
+
+// Pair k's bundle from x: strategy j = 2 of the one-bounce term (returned; zero for strategy =
+// vpl) and, with bounces = 2, the two-bounce term through the same hit y (added to `twoBounce`).
+vec3 bundleTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, inout vec3 twoBounce) {
     BundleFrame frame = blBundlePoolFrame(push.pool, k);
     float cosine = dot(n, frame.direction);
     float side = cosine >= 0.0 ? 1.0 : -1.0;
@@ -120,17 +185,27 @@ vec3 bundleTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
     vec3 ny = dot(shading, wy) >= 0.0 ? shading : -shading; // two-sided reflection
     float cosY = dot(ny, wy);
     GpuMaterial my = materials[payload.material & kBundleHitMaterialMask];
-    vec3 fx = blEvalBrdf(m, albedo, n, d, wo) * (abs(cosine) / push.hemispherePdf);
+    float weightX = abs(cosine) / push.hemispherePdf;
+    if (push.bounces >= 2u) {
+        // Eq. 14 at x for the two-bounce path: d = N p_r (d on the light side is a delta).
+        vec3 fx2 = blBidirEvalBrdf(m, albedo, n, d, wo, float(push.pairs) * push.hemispherePdf, push.suppression,
+                                   push.suppressionNeighbours);
+        twoBounce += twoBounceTerm(k, y, ny, my, wy) * fx2 * weightX;
+    }
+    if (push.strategy == kBidirStrategyVpl) {
+        return vec3(0.0);
+    }
     float p2 = push.hemispherePdf * max(cosY, 0.0) / r2;
     vec3 sum = vec3(0.0);
     for (uint l = 0u; l < push.lightCount; ++l) {
-        float p1;
+        float p1, dX;
         // Textured albedo at y: not yet (the material's albedo; BidirMode.h says so).
-        vec3 reflected = lightAt(l, y, ny, my, my.albedo, wy, p1);
+        vec3 reflected = lightAt(l, y, ny, my, my.albedo, wy, p2, p1, dX);
         float weight = push.strategy == kBidirStrategyBundle ? 1.0 : (p2 > 0.0 ? p2 / (p1 + p2) : 0.0);
-        sum += reflected * weight;
+        vec3 fx = blBidirEvalBrdf(m, albedo, n, d, wo, dX, push.suppression, push.suppressionNeighbours);
+        sum += reflected * fx * (weight * weightX);
     }
-    return sum * fx;
+    return sum;
 }
 
 void main() {
@@ -140,7 +215,7 @@ void main() {
     }
     // The pool contract: a build that ran out of nodes left lists incomplete; the mode grows the
     // pool and redoes the frame, so nothing of this one may be added.
-    if (push.strategy != kBidirStrategyVpl && blBundlePoolOverflowed(BundleCounterBlock(push.pool.counters))) {
+    if ((push.strategy != kBidirStrategyVpl || push.bounces >= 2u) && blBundlePoolOverflowed(BundleCounterBlock(push.pool.counters))) {
         return;
     }
     if (!blCameraHitSurface(pixel)) {
@@ -161,18 +236,21 @@ void main() {
     vec3 wo = normalize(camera.position - x);
     layers[kPathEmitted] = imageLoad(gbuffer[kGBufferEmission], pixel).rgb;
     for (uint l = 0u; l < push.lightCount; ++l) {
-        float unused;
-        layers[kPathDirect] += lightAt(l, x, n, m, albedo, wo, unused);
+        float unusedPdf, unusedDensity;
+        layers[kPathDirect] += lightAt(l, x, n, m, albedo, wo, -1.0, unusedPdf, unusedDensity);
     }
     vec3 indirect = vec3(0.0);
+    vec3 twoBounce = vec3(0.0);
+    const bool bundles = push.strategy != kBidirStrategyVpl || push.bounces >= 2u;
     for (uint k = 0u; k < push.pairs; ++k) {
         if (push.strategy != kBidirStrategyBundle) {
             indirect += vplTerm(k, x, n, m, albedo, wo);
         }
-        if (push.strategy != kBidirStrategyVpl) {
-            indirect += bundleTerm(k, x, n, m, albedo, wo);
+        if (bundles) {
+            indirect += bundleTerm(k, x, n, m, albedo, wo, twoBounce);
         }
     }
     layers[kPathIndirect1] = indirect / float(max(push.pairs, 1u));
+    layers[kPathIndirect2] = twoBounce / float(max(push.pairs, 1u));
     blAccumulate(pixel, layers);
 }
