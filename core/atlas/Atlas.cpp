@@ -317,7 +317,13 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
             std::uint32_t page = 0;
             while (page < packers.size() && !packers[page].place(single, density, offset, turns)) ++page;
             if (page == packers.size()) {
-                continue; // no room left: the triangle stays uncovered and is counted
+                // No room left on any page: a new page (its triangle left out would leave the
+                // atlas without it, and the atlas link refuse the scene).
+                packers.emplace_back(width, height, options.padding);
+                ++pages;
+                if (!packers[page].place(single, density, offset, turns)) {
+                    continue; // larger than a page: stays uncovered and is counted
+                }
             }
             placeChart(single, density, offset, turns);
             single.page = page;
