@@ -32,6 +32,12 @@ std::uint32_t suppressionOf(const std::string& name) {
     return shader::kBidirSuppressionNone;
 }
 
+// Suppression runs only where it can change something: a glossy material and indirect light.
+// Skipped, the shader takes blEvalBrdf's path it would take anyway for Lambertian materials.
+bool suppressionRuns(const Settings& settings, const SceneFeatures& f) {
+    return settings.getString(BidirMode::kSuppression) != "none" && f.glossy && f.shadowCastingLights() > 0;
+}
+
 std::uint32_t strategyOf(const std::string& name) {
     if (name == "vpl") return shader::kBidirStrategyVpl;
     if (name == "bundle") return shader::kBidirStrategyBundle;
@@ -123,6 +129,13 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
     p.push_back({"evaluate", true, lights ? "direct + one-bounce (" + strategy + ")" +
                                                 (twoBounce ? " + two-bounce" : "") + " at every visible point"
                                           : "no point/spot light: emitters and environment background only"});
+    const std::string suppression = mSettings.getString(kSuppression);
+    const bool suppress = suppressionRuns(mSettings, f);
+    p.push_back({"glossy suppression (" + suppression + ")", suppress,
+                 suppress               ? "sample densities (Eq. 13-17) at the glossy vertices of indirect paths"
+                 : suppression == "none" ? "suppression = none"
+                 : !lights              ? "no indirect light without point/spot lights"
+                                        : "no glossy material: every BRDF is Lambertian, nothing to suppress"});
     if (f.emissiveMeshes || f.environment) {
         p.push_back({"area/environment light", false, "not lit by bidir yet: use reference or multibounce"});
     }
@@ -291,7 +304,8 @@ void BidirMode::iterate(const IterationInfo& info) {
     push.strategy = strategy;
     // Uniform directions: every direction of a hemisphere has the same density (the axis is arbitrary).
     push.hemispherePdf = g.directions->hemispherePdf(glm::vec3(0.0f, 0.0f, 1.0f));
-    push.suppression = suppressionOf(mSettings.getString(kSuppression));
+    push.suppression = suppressionRuns(mSettings, g.scene->features()) ? suppressionOf(mSettings.getString(kSuppression))
+                                                                        : shader::kBidirSuppressionNone;
     push.suppressionNeighbours = static_cast<float>(mSettings.getDouble(kSuppressionNeighbours));
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
     push.environmentRotation = g.scene->environmentRotation();

@@ -280,3 +280,43 @@ TEST_F(Bidir, NoSuppressionIsUnbiasedOnGlossyScene) {
     EXPECT_LT(std::sqrt(variance), kImageTolerance * ref) << "too noisy to test";
     EXPECT_NEAR(mean, ref, kImageTolerance * ref + 3.0 * std::sqrt(variance));
 }
+
+// The pass plan skips glossy suppression on a scene without glossy materials, and the image is
+// the same to the bit as with suppression = none; on the glossy scene it runs and changes the
+// image (so the comparison can fail).
+TEST_F(Bidir, PlanSkipsSuppressionWithoutGlossyMaterialImageUnchanged) {
+    auto render = [&](const Scene& s, const std::string& suppression, bool expectRuns) {
+        std::vector<std::string> settings = kCommon;
+        settings.insert(settings.end(), {"strategy=mis", "bounces=2", "suppression=" + suppression});
+        std::unique_ptr<Mode> mode = createMode("bidir", settings);
+        bool listed = false;
+        for (const PlannedPass& p : mode->plan(s)) {
+            if (p.name.rfind("glossy suppression", 0) == 0) {
+                listed = true;
+                EXPECT_EQ(p.runs, expectRuns) << suppression << ": " << p.reason;
+                std::printf("%s: %s\n", p.name.c_str(), p.reason.c_str());
+            }
+        }
+        EXPECT_TRUE(listed);
+        mode->setScene(s, &ctx());
+        for (std::uint32_t f = 0; f < 4; ++f) mode->iterate({f, 7, 0.0});
+        ImageSet out = mode->resolve();
+        return std::make_pair(bl::test::layerOf(out, "indirect1"), bl::test::layerOf(out, "indirect2"));
+    };
+    auto same = [](const Image& a, const Image& b) {
+        for (int y = 0; y < kResolution; ++y)
+            for (int x = 0; x < kResolution; ++x)
+                if (a.at(x, y) != b.at(x, y)) return false;
+        return true;
+    };
+    const Scene diffuse = cornellPoint();
+    const auto skipped = render(diffuse, "roughness", false);
+    const auto none = render(diffuse, "none", false);
+    EXPECT_TRUE(same(skipped.first, none.first) && same(skipped.second, none.second));
+
+    Scene glossy = loadScene(bl::test::sourcePath("data/external/cornell-glossy-point.toml"));
+    glossy.camera.resolution = {kResolution, kResolution};
+    const auto suppressed = render(glossy, "roughness", true);
+    const auto glossyNone = render(glossy, "none", false);
+    EXPECT_FALSE(same(suppressed.first, glossyNone.first));
+}
