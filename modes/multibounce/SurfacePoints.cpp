@@ -54,6 +54,17 @@ SurfacePoints::SurfacePoints(const vk::Context& ctx, const gpu::GpuScene& scene,
     if (count > 0xffffffffull / 2) {
         throw Error("imperfect bundles: " + std::to_string(count) + " points per iteration are too many");
     }
+    // The point pass binds both arrays whole as storage buffers.
+    VkPhysicalDeviceProperties properties{};
+    vkGetPhysicalDeviceProperties(ctx.physicalDevice(), &properties);
+    const std::uint64_t range = properties.limits.maxStorageBufferRange;
+    if (count * sizeof(shader::BundleSplat) > range) {
+        throw Error("imperfect bundles: " + std::to_string(directions) + " directions x " + std::to_string(perDirection) +
+                    " points need " + std::to_string(count * sizeof(shader::BundleSplat)) +
+                    " bytes of splats, more than one storage buffer binding of '" + ctx.info().name + "' holds (" +
+                    std::to_string(range) + "); at most " + std::to_string(range / sizeof(shader::BundleSplat) / perDirection) +
+                    " directions fit at this number of points (lower bundle_count or points)");
+    }
     ctx.requireDeviceMemory(count * (sizeof(shader::BundleSplat) + sizeof(shader::MultibouncePoint)),
                             "imperfect bundles: " + std::to_string(directions) + " x " + std::to_string(perDirection) +
                                 " points");

@@ -218,6 +218,21 @@ TEST_F(Multibounce, PlanSkipsUnusedPassesAndTheImageIsUnchanged) {
     EXPECT_EQ(differ, 0u) << "pixels changed by the skipped shadow pass";
 }
 
+// Point sets no storage binding can hold are refused with the number of directions that fit (1024
+// directions x 65536 points = 2 GiB of splats), not bound past the device's range.
+TEST_F(Multibounce, ImperfectRefusesPointSetsBeyondOneBinding) {
+    Scene s = loadSmall("data/cornell-box/cornell.toml", 8);
+    std::unique_ptr<Mode> mode = createMode("multibounce", {"bundles=imperfect", "bundle_count=1024", "points=65536"});
+    try {
+        mode->setScene(s, &ctx());
+        FAIL() << "1024 x 65536 points were not refused";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        std::printf("%s\n", message.c_str());
+        EXPECT_NE(message.find("directions fit"), std::string::npos) << message;
+    }
+}
+
 TEST_F(Multibounce, NonFiniteSamplesAreCountedNotAveraged) {
     bl::test::expectInfiniteSamplesCounted("multibounce", &ctx(), {"paths_per_pixel=1"});
 }
