@@ -20,6 +20,12 @@ void bundleAxes(const glm::vec3& direction, float rotation, glm::vec3& axisX, gl
     axisY = glm::normalize(glm::cross(direction, axisX));
 }
 
+float bundleDepthEpsilon(const glm::vec3& center, float radius) {
+    const float largest = std::max({std::abs(center.x), std::abs(center.y), std::abs(center.z)}) + radius;
+    const float step = std::nextafter(largest, std::numeric_limits<float>::infinity()) - largest;
+    return std::max(kBundleDepthEpsilon * radius, kBundleDepthUlps * step);
+}
+
 namespace {
 shader::BundleFrame makeFrame(const glm::vec3& direction, const glm::vec3& axisX, const glm::vec3& axisY,
                               glm::vec2 lo, float pixelSize, std::uint32_t width, std::uint32_t height,
@@ -43,7 +49,7 @@ shader::BundleFrame makeFrame(const glm::vec3& direction, const glm::vec3& axisX
     // planes off any geometry.
     f.depthNear = -1.01f * sceneRadius;
     f.depthFar = 1.01f * sceneRadius;
-    f.depthEpsilon = kBundleDepthEpsilon * sceneRadius;
+    f.depthEpsilon = bundleDepthEpsilon(sceneCenter, sceneRadius);
     return f;
 }
 } // namespace

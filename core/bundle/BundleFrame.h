@@ -15,6 +15,13 @@ namespace bl {
 // point's own depth along its ray count as the point itself. 1e-5 of the radius is ~80 float ulps
 // of any coordinate inside the sphere, and below any modelled feature.
 inline constexpr float kBundleDepthEpsilon = 1e-5f;
+// ...but never below this many float steps of the largest coordinate in the sphere: far from the
+// origin every position carries an error of its magnitude's ulp (10^4 radii away one step is
+// 6e-4 of the radius, 60x the relative tolerance), and so does every depth measured from it.
+inline constexpr float kBundleDepthUlps = 4.0f;
+
+// The depth tolerance of a bundle over the sphere (center, radius).
+float bundleDepthEpsilon(const glm::vec3& center, float radius);
 
 // A right-handed basis for direction d: axisX, axisY = cross(d, axisX), d, rotated by `rotation`
 // radians about d.

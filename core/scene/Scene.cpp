@@ -114,4 +114,36 @@ void scaleScene(Scene& scene, float factor) {
     }
 }
 
+void translateScene(Scene& scene, const glm::vec3& offset) {
+    for (Mesh& m : scene.meshes) {
+        if (m.animation.keys().empty()) {
+            for (glm::vec3& p : m.positions) {
+                p += offset;
+            }
+            continue;
+        }
+        // Animated meshes move by their keyframes' translation (applied after their rotation).
+        RigidAnimation moved;
+        for (RigidKeyframe k : m.animation.keys()) {
+            k.translate += offset;
+            moved.addKey(k);
+        }
+        m.animation = moved;
+    }
+    for (Light& l : scene.lights) {
+        l.position += offset;
+        for (LightKeyframe& k : l.keys) {
+            k.position += offset;
+        }
+    }
+    auto movePose = [&offset](CameraPose& p) {
+        p.position += offset;
+        p.target += offset;
+    };
+    movePose(scene.camera.pose);
+    for (CameraKeyframe& k : scene.camera.keys) {
+        movePose(k.pose);
+    }
+}
+
 } // namespace bl

@@ -45,4 +45,8 @@ struct Scene {
 // therefore every image) stays the same: the check that nothing depends on absolute scale.
 void scaleScene(Scene& scene, float factor);
 
+// Moves every position (geometry, its keyframes, lights, camera) by `offset`: the same image, the
+// check that nothing depends on where the scene sits (float steps grow with the distance).
+void translateScene(Scene& scene, const glm::vec3& offset);
+
 } // namespace bl
