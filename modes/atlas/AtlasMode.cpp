@@ -24,6 +24,7 @@
 #include <modes/atlas/update.comp.spv.h>
 #include <shared/Random.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -135,6 +136,9 @@ struct AtlasMode::Gpu {
     vk::GpuTimer timer;
     Bounds bounds;
     std::uint32_t texelCount = 0;
+    // Host wall clock of each direction's two submissions (lavapipe's timestamps do not separate
+    // compute passes from the draws before them): build + sort, exchange + update.
+    PassTime wallBuild{"build + sort (wall)"}, wallExchange{"exchange + update (wall)"};
     std::uint64_t nodesLast = 0;
     std::uint32_t rebuilds = 0;
 };
@@ -339,6 +343,7 @@ void AtlasMode::buildBundle(const IterationInfo& info) {
     std::memcpy(g.direction.data(), &params, sizeof(params));
 
     for (;;) {
+        const auto start = std::chrono::steady_clock::now();
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
             g.pool->recordReset(cmd);
@@ -346,6 +351,8 @@ void AtlasMode::buildBundle(const IterationInfo& info) {
             g.pool->recordSort(cmd, 0, &g.timer);
         });
         g.timer.collect();
+        g.wallBuild.totalMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        ++g.wallBuild.count;
         const BundlePoolStatus status = g.pool->status();
         if (!status.overflowed()) {
             g.nodesLast = status.requested;
@@ -457,6 +464,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
     const bool lastPass = maxSegments != 0 && mPass + 1 >= maxSegments;
     update.settle = bounce() && !lastPass && std::uint32_t(mTotalWeight + weight) >= passDirections ? 1u : 0u;
     update.directIntoSender = mPass == 1 ? 1u : 0u;
+    const auto start = std::chrono::steady_clock::now();
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         std::uint32_t scope = g.timer.start(cmd, "exchange");
@@ -474,6 +482,8 @@ void AtlasMode::iterate(const IterationInfo& info) {
                           VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
     });
     g.timer.collect();
+    g.wallExchange.totalMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    ++g.wallExchange.count;
     mTotalWeight += weight;
     if (update.settle != 0u) {
         ++mPass;
@@ -567,6 +577,12 @@ bool AtlasMode::bounce() const { return mSettings.getString(kTransfer) == "bounc
 
 float AtlasMode::directScale() const { return bounce() && mSettings.getInt(kMaxSegments) == 1 ? 0.0f : 1.0f; }
 
-PassTimes AtlasMode::timings() const { return mGpu ? mGpu->timer.totals() : PassTimes{}; }
+PassTimes AtlasMode::timings() const {
+    if (!mGpu) return {};
+    PassTimes t = mGpu->timer.totals();
+    t.push_back(mGpu->wallBuild);
+    t.push_back(mGpu->wallExchange);
+    return t;
+}
 
 } // namespace bl
