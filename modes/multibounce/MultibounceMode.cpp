@@ -95,7 +95,8 @@ std::vector<PlannedPass> MultibounceMode::plan(const Scene& scene) const {
         p.push_back({"surface points", true,
                      k + " x " + n + " points uniform by area over " + std::to_string(f.triangles) +
                          " triangles (a different set per direction), every iteration" +
-                         (f.textured ? "; UVs interpolated" : "; no textures: UVs not interpolated")});
+                         (f.textured ? "; UVs interpolated, albedo textures looked up per point (one pass per textured material)"
+                                     : "; no textures: UVs not interpolated, no texture pass")});
         p.push_back({"bundle build", true, k + " bundles of " + r + "^2 pixels from " + n +
                                                " point splats each (splat_scale " +
                                                formatValue(mSettings.getDouble(kSplatScale)) +
@@ -117,7 +118,8 @@ std::vector<PlannedPass> MultibounceMode::plan(const Scene& scene) const {
     paths += f.emissiveMeshes ? "; emitters hit (front faces)" : "; no emitters to hit";
     paths += f.environment ? "; environment for escaping paths" : "; no environment: escaping paths end";
     if (f.textured) {
-        paths += "; textures only at the first vertex (material albedo beyond)";
+        paths += imperfect() ? "; textured albedo at every vertex (the points')"
+                             : "; textures only at the first vertex (material albedo beyond)";
     }
     p.push_back({"paths", true, paths});
     return p;

@@ -29,9 +29,10 @@
 // point's shading normal, material and triangle (emission). Holes let light leak through surfaces
 // and overlapping discs add redundant nodes (the trade-off over splat_scale: README).
 //
-// Not yet: textured albedo beyond the camera's first vertex (the material's albedo is used there;
-// perfect bundles' payload and imperfect bundles' points carry the UV, but the path pass has no
-// texture table: that needs descriptor indexing, which the core device does not enable).
+// Textured albedo: imperfect bundles' points look their material's texture up at their UV (one
+// pass per textured material, SurfacePoints), so it survives at every vertex. Perfect bundles: not
+// yet beyond the camera's first vertex (the payload carries the UV, but the path pass has no texture
+// table: that needs descriptor indexing, which the core device does not enable).
 //
 // Parameters (`bundlelab modes`):
 //   bundle_count       64      bundles       resident bundles per iteration (K)

@@ -1,7 +1,8 @@
 // Imperfect bundles ([TO12p], EQUATIONS.md section 3): per iteration, a different set of N points
 // per direction, uniform by area over all surfaces, turned into tangent-plane splats for
 // BundlePool::recordBuild (BundleGeometry::pointSplats) plus what a path vertex found on a splat
-// needs (MultibouncePoint: shading normal, triangle, UV).
+// needs (MultibouncePoint: shading normal, triangle, UV, albedo: a textured material's texture looked
+// up at the point's UV by one more pass per textured material).
 //
 // Sampling runs on the GPU (points.comp.glsl): a binary search of an area CDF over the scene's
 // triangles (built on the host once, in double: rigid animation keeps areas), then square-root
@@ -19,6 +20,9 @@
 #include "vk/Descriptors.h"
 #include "vk/GpuTimer.h"
 #include "vk/Pipeline.h"
+
+#include <utility>
+#include <vector>
 
 namespace bl {
 
@@ -58,6 +62,12 @@ private:
     VkDescriptorSet mSet = VK_NULL_HANDLE;
     vk::PipelineLayout mLayout;
     vk::Pipeline mPipeline;
+    // Textured materials: one set each with the texture, and the pass that looks points' albedo up.
+    vk::DescriptorSetLayout mTextureLayout;
+    vk::DescriptorPool mTexturePool;
+    std::vector<std::pair<std::uint32_t, VkDescriptorSet>> mTextureSets; // (material, set)
+    vk::PipelineLayout mTextureLayoutPipeline;
+    vk::Pipeline mTexturePipeline;
 };
 
 } // namespace bl

@@ -52,8 +52,10 @@ struct MultibouncePoint {
     uint normal;   // octahedral shading normal (interpolated vertex normals), world space
     uint triangle; // the triangle the point was sampled on (GpuScene order): its emission
     vec2 uv;       // material texture coordinates at the point
+    uvec2 albedo;  // linear albedo at the point (texture at uv, else the material's): half floats,
+                   // packHalf2x16(r, g), packHalf2x16(b, 0)
 };
-BL_STATIC_ASSERT(sizeof(MultibouncePoint) == 16, "MultibouncePoint layout");
+BL_STATIC_ASSERT(sizeof(MultibouncePoint) == 24, "MultibouncePoint layout");
 
 // Point pass: the scene's draws at the iteration's time, for the triangle -> draw search.
 struct MultibounceDraw {
@@ -72,6 +74,10 @@ BL_CONST uint kMultibouncePointsBindingIndices = 3u;  // storage uint[]
 BL_CONST uint kMultibouncePointsBindingPlanes = 4u;   // storage vec4[] (GpuScene planes)
 BL_CONST uint kMultibouncePointsBindingSplats = 5u;   // storage BundleSplat[] (written)
 BL_CONST uint kMultibouncePointsBindingPoints = 6u;   // storage MultibouncePoint[] (written)
+BL_CONST uint kMultibouncePointsBindingMaterials = 7u; // storage GpuMaterial[]
+// Texture pass, set 1: one material's albedo texture.
+BL_CONST uint kMultibouncePointsTextureSet = 1u;
+BL_CONST uint kMultibouncePointsBindingTexture = 0u;  // combined image sampler
 
 struct MultibouncePointsPush {
     uint seed;
@@ -82,6 +88,7 @@ struct MultibouncePointsPush {
     uint drawCount;
     float radius;       // splat radius, world units
     uint textured;      // 0: no material has a texture, UVs are not interpolated (left 0)
+                        // texture pass: the material whose points look their albedo up
 };
 BL_STATIC_ASSERT(sizeof(MultibouncePointsPush) == 32, "MultibouncePointsPush layout");
 BL_CONST uint kMultibouncePointsGroupSize = 64u;

@@ -126,22 +126,24 @@ void tracePath(vec3 x0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 emitted, uin
         x = frame.origin + (float(bundlePixel.x) + 0.5) * frame.pixelSize * frame.axisX +
             (float(bundlePixel.y) + 0.5) * frame.pixelSize * frame.axisY + node.depth * frame.direction;
         wo = -d;
+        m = materials[payload.material & kBundleHitMaterialMask];
+        albedo = m.albedo; // perfect bundles: textured albedo beyond the first vertex not yet (MultibounceMode.h)
         uint triangle = payload.id;
         uint packedNormal = payload.normal;
         if ((payload.material & kBundleHitSplat) != 0u) {
             // Imperfect bundles: a splat of bundle k's point set; its point holds the shading
-            // normal and the triangle it was sampled on (the splat's face bit is that triangle's).
+            // normal, the albedo (texture at its UV) and the triangle it was sampled on (the
+            // splat's face bit is that triangle's).
             MultibouncePoint point = points[k * push.pointsPerDirection + payload.id];
             triangle = point.triangle;
             packedNormal = point.normal;
+            albedo = vec3(unpackHalf2x16(point.albedo.x), unpackHalf2x16(point.albedo.y).x);
         }
         vec3 shading = blUnpackOctahedral(packedNormal);
         n = dot(shading, wo) >= 0.0 ? shading : -shading; // two-sided reflection
         if (blBundleFacesBack(node.next, side)) {
             layers[layerOf(segments + 1u)] += throughput * emissionOf(triangle); // front faces emit
         }
-        m = materials[payload.material & kBundleHitMaterialMask];
-        albedo = m.albedo; // textured albedo beyond the first vertex: not yet (MultibounceMode.h)
     }
 }
 

@@ -6,7 +6,7 @@
 // barycentrics). Each direction's points come from their own random numbers, so every bundle
 // sees a different point set. The point becomes a BundleSplat (disc of push.radius in the
 // triangle's plane, oriented like the triangle's front face so the bundle's face bit matches a
-// triangle build) and a MultibouncePoint (shading normal, triangle for emission, UV).
+// triangle build) and a MultibouncePoint (shading normal, triangle for emission, UV, albedo).
 #include "modes/multibounce/MultibounceShared.h"
 #include "modes/multibounce/DrawSearch.glsl"
 #include "shared/GpuTypes.h"
@@ -22,6 +22,7 @@ layout(set = 0, binding = kMultibouncePointsBindingIndices) readonly buffer Inde
 layout(set = 0, binding = kMultibouncePointsBindingPlanes) readonly buffer PlaneBlock { vec4 planes[]; };
 layout(set = 0, binding = kMultibouncePointsBindingSplats) writeonly buffer SplatBlock { BundleSplat splats[]; };
 layout(set = 0, binding = kMultibouncePointsBindingPoints) writeonly buffer PointBlock { MultibouncePoint points[]; };
+layout(set = 0, binding = kMultibouncePointsBindingMaterials) readonly buffer MaterialBlock { GpuMaterial materials[]; };
 layout(push_constant) uniform PushBlock { MultibouncePointsPush push; };
 
 // The first triangle whose inclusive CDF exceeds u (triangles of zero area are never chosen).
@@ -84,5 +85,8 @@ void main() {
         p.uv = b0 * vec2(v0.positionU.w, v0.normalV.w) + b1 * vec2(v1.positionU.w, v1.normalV.w) +
                b2 * vec2(v2.positionU.w, v2.normalV.w);
     }
+    // The material's albedo; the texture pass (points_texture.comp) replaces it where textured.
+    vec3 albedo = materials[d.material].albedo;
+    p.albedo = uvec2(packHalf2x16(albedo.rg), packHalf2x16(vec2(albedo.b, 0.0)));
     points[index] = p;
 }
