@@ -64,9 +64,11 @@ void addPlanCommand(CLI::App& app, Action& action) {
     CLI::App* cmd = app.add_subcommand("plan", "print a mode's pass plan for a scene, with the reason for each pass");
     cmd->add_option("scene", *scenePath, "scene file")->required();
     cmd->add_option("-m,--mode", *modeName, "mode")->required();
-    cmd->callback([scenePath, modeName, &action] {
-        action = [scenePath, modeName] {
-            std::unique_ptr<Mode> mode = createMode(*modeName);
+    auto assignments = std::make_shared<std::vector<std::string>>();
+    cmd->add_option("--set", *assignments, "mode parameter key=value (repeatable): the plan of those settings");
+    cmd->callback([scenePath, modeName, assignments, &action] {
+        action = [scenePath, modeName, assignments] {
+            std::unique_ptr<Mode> mode = createMode(*modeName, *assignments);
             Scene scene = loadScene(*scenePath);
             for (const PlannedPass& p : mode->plan(scene)) {
                 std::cout << (p.runs ? "  run   " : "  skip  ") << p.name << ": " << p.reason << "\n";

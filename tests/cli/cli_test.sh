@@ -65,6 +65,9 @@ modes)
 plan)
     "$bl" plan data/cornell-box/cornell.toml --mode raster | tee "$out/plan.txt" || fail "plan failed"
     grep -q "skip  shadow maps: no point or spot lights" "$out/plan.txt" || fail "plan reason"
+    "$bl" plan data/cornell-box/cornell.toml --mode multibounce --set bundles=imperfect | tee "$out/plan-set.txt" ||
+        fail "plan --set failed"
+    grep -q "no textures: UVs not interpolated" "$out/plan-set.txt" || fail "plan of the --set settings"
     ;;
 bad_scene)
     printf '[camera]\nresolution = [512, 0]\n' >"$out/bad.toml"
