@@ -25,16 +25,20 @@ GBufferPass::GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uin
     const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     mFrameLayout = vk::makeDescriptorSetLayout(
         device, {{shader::kGBufferBindingCamera, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both},
-                 {shader::kGBufferBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT}});
+                 {shader::kGBufferBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                 {shader::kGBufferBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                 {shader::kGBufferBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT}});
     mMaterialLayout = vk::makeDescriptorSetLayout(
         device, {{shader::kGBufferBindingAlbedoTexture, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                   VK_SHADER_STAGE_FRAGMENT_BIT}});
     const auto materialCount = static_cast<std::uint32_t>(scene.scene().materials.size());
-    mPool = vk::DescriptorPool(device, materialCount + 1, materialCount + 2);
+    mPool = vk::DescriptorPool(device, materialCount + 1, materialCount + 4);
     mFrameSet = mPool.allocate(mFrameLayout.get());
     vk::DescriptorWriter()
         .buffer(shader::kGBufferBindingCamera, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, mCamera.get())
         .buffer(shader::kGBufferBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.materialBuffer())
+        .buffer(shader::kGBufferBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.vertexBuffer())
+        .buffer(shader::kGBufferBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.indexBuffer())
         .update(device, mFrameSet);
     for (std::uint32_t m = 0; m < materialCount; ++m) {
         VkDescriptorSet set = mPool.allocate(mMaterialLayout.get());
@@ -83,6 +87,8 @@ void GBufferPass::record(VkCommandBuffer cmd, const shader::GpuCamera& camera, g
         push.emission = mesh.emission;
         push.material = mesh.material;
         push.jitter = jitterNdc;
+        push.firstTriangle = d.firstIndex / 3;
+        push.vertexOffset = static_cast<std::uint32_t>(d.vertexOffset);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipelineLayout.get(), 1, 1,
                                 &mMaterialSets[mesh.material], 0, nullptr);
         vkCmdPushConstants(cmd, mPipelineLayout.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,

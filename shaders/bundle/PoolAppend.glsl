@@ -10,6 +10,7 @@
 #include "bundle/BundleBuffers.glsl"
 #include "bundle/Projection.glsl"
 #include "shared/GpuTypes.h"
+#include "shared/Barycentrics.h"
 #include "shared/Octahedral.h"
 #ifdef BL_SUBGROUP_ALLOCATION
 #extension GL_KHR_shader_subgroup_ballot : require
@@ -153,17 +154,7 @@ void main() {
         vec3 p0 = (push.model * vec4(v0.positionU.xyz, 1.0)).xyz;
         vec3 e1 = mat3(push.model) * (v1.positionU.xyz - v0.positionU.xyz);
         vec3 e2 = mat3(push.model) * (v2.positionU.xyz - v0.positionU.xyz);
-        vec3 q = pixelRay(frame) + depth * frame.direction - p0;
-        float d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2);
-        float d20 = dot(q, e1), d21 = dot(q, e2);
-        float denominator = d00 * d11 - d01 * d01;
-        vec2 b = denominator > 0.0 ? vec2(d11 * d20 - d01 * d21, d00 * d21 - d01 * d20) / denominator
-                                   : vec2(1.0 / 3.0);
-        // The pixel centre can lie a rounding error outside the triangle the rasterizer gave it.
-        b = clamp(b, 0.0, 1.0);
-        if (b.x + b.y > 1.0) {
-            b /= b.x + b.y;
-        }
+        vec2 b = blTriangleBarycentrics(pixelRay(frame) + depth * frame.direction - p0, e1, e2);
         float b0 = 1.0 - b.x - b.y;
         vec3 shading = b0 * v0.normalV.xyz + b.x * v1.normalV.xyz + b.y * v2.normalV.xyz;
         hit.normal = blPackOctahedral(safeNormalize(mat3(push.model) * shading, safeNormalize(planeNormal, -frame.direction)));

@@ -20,6 +20,14 @@ layout(set = kCameraSet, binding = kCameraBindingEnvironment) uniform sampler2D 
 // Whether the camera sample of `pixel` hit a surface (else its ray escaped).
 bool blCameraHitSurface(ivec2 pixel) { return imageLoad(gbuffer[kGBufferPosition], pixel).w > 0.0; }
 
+// The triangle (global index, GpuScene order) the camera sample of `pixel` hit, and the sample's
+// barycentrics (b1, b2) in it. Only meaningful where blCameraHitSurface(pixel).
+uint blGBufferSurface(ivec2 pixel, out vec2 barycentrics) {
+    vec4 s = imageLoad(gbuffer[kGBufferSurface], pixel);
+    barycentrics = s.zw;
+    return uint(s.x) | (uint(s.y) << 16);
+}
+
 // Radiance of an escaped camera ray through `pixel` at sub-pixel `samplePosition`: the
 // environment when the scene has one (rotated by `rotation` radians about +y), else black.
 vec3 blCameraBackground(ivec2 pixel, vec2 samplePosition, bool environmentPresent, float rotation) {

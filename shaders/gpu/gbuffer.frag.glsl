@@ -1,7 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // G-buffer: world position, shading normal turned toward the camera (two-sided reflection),
-// albedo with its texture, and emitted radiance of front faces only (one-sided emission).
+// albedo with its texture, emitted radiance of front faces only (one-sided emission), and the
+// sample's triangle with its barycentrics.
+#include "shared/Barycentrics.h"
 #include "shared/Bindings.h"
 #include "shared/GpuTypes.h"
 
@@ -11,6 +13,8 @@ layout(location = 2) in vec2 inUv;
 
 layout(set = 0, binding = kGBufferBindingCamera) uniform CameraBlock { GpuCamera camera; };
 layout(set = 0, binding = kGBufferBindingMaterials) readonly buffer MaterialBlock { GpuMaterial materials[]; };
+layout(set = 0, binding = kGBufferBindingVertices) readonly buffer VertexBlock { GpuVertex vertices[]; };
+layout(set = 0, binding = kGBufferBindingIndices) readonly buffer IndexBlock { uint indices[]; };
 layout(set = 1, binding = kGBufferBindingAlbedoTexture) uniform sampler2D albedoTexture;
 layout(push_constant) uniform PushBlock { GBufferPush push; };
 
@@ -18,6 +22,16 @@ layout(location = kGBufferPosition) out vec4 outPosition;
 layout(location = kGBufferNormal) out vec4 outNormal;
 layout(location = kGBufferAlbedo) out vec4 outAlbedo;
 layout(location = kGBufferEmission) out vec4 outEmission;
+layout(location = kGBufferSurface) out vec4 outSurface;
+
+// Barycentrics of the sample in its triangle, from the triangle's corners in world space.
+vec2 sampleBarycentrics(uint triangle) {
+    uint first = 3u * triangle;
+    vec3 a = (push.model * vec4(vertices[indices[first] + push.vertexOffset].positionU.xyz, 1.0)).xyz;
+    vec3 b = (push.model * vec4(vertices[indices[first + 1u] + push.vertexOffset].positionU.xyz, 1.0)).xyz;
+    vec3 c = (push.model * vec4(vertices[indices[first + 2u] + push.vertexOffset].positionU.xyz, 1.0)).xyz;
+    return blTriangleBarycentrics(inWorld - a, b - a, c - a);
+}
 
 void main() {
     float len = length(inNormal);
@@ -36,4 +50,6 @@ void main() {
     outNormal = vec4(n, float(push.material));
     outAlbedo = vec4(albedo, 1.0);
     outEmission = vec4(gl_FrontFacing ? push.emission : vec3(0.0), 1.0);
+    uint triangle = push.firstTriangle + uint(gl_PrimitiveID);
+    outSurface = vec4(float(triangle & 0xffffu), float(triangle >> 16), sampleBarycentrics(triangle));
 }

@@ -8,6 +8,8 @@ BL_NAMESPACE_BEGIN
 // G-buffer pass, set 0 (per frame).
 BL_CONST uint kGBufferBindingCamera = 0u;    // uniform GpuCamera
 BL_CONST uint kGBufferBindingMaterials = 1u; // storage GpuMaterial[]
+BL_CONST uint kGBufferBindingVertices = 2u;  // storage GpuVertex[] (the surface channel's triangles)
+BL_CONST uint kGBufferBindingIndices = 3u;   // storage uint[]
 // G-buffer pass, set 1 (per material): its albedo texture (a white texel when untextured).
 BL_CONST uint kGBufferBindingAlbedoTexture = 0u;
 
@@ -16,7 +18,11 @@ BL_CONST uint kGBufferPosition = 0u; // xyz world position, w = 1 where a surfac
 BL_CONST uint kGBufferNormal = 1u;   // xyz shading normal facing the camera, w = material index
 BL_CONST uint kGBufferAlbedo = 2u;   // rgb albedo (texture applied)
 BL_CONST uint kGBufferEmission = 3u; // rgb emitted radiance toward the camera (front faces only)
-BL_CONST uint kGBufferAttachmentCount = 4u;
+BL_CONST uint kGBufferSurface = 4u;  // the sample's triangle and where in it (atlas gather, reprojection,
+                                     // first path vertices): x, y = global triangle index (GpuScene order)
+                                     // low and high 16 bits (exact in float), z, w = barycentrics (b1, b2);
+                                     // decode with blGBufferSurface (shaders/gpu/CameraSet.glsl)
+BL_CONST uint kGBufferAttachmentCount = 5u;
 
 // Camera set: set 0 of every shading pass that runs per camera pixel (core/gpu/CameraPass.h,
 // shaders/gpu/CameraSet.glsl); each mode adds its own set 1.

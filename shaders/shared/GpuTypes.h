@@ -77,8 +77,8 @@ struct GBufferPush {
     vec3 emission;   // emitted radiance of the mesh's front face
     uint material;   // index into the material buffer
     vec2 jitter;     // sub-pixel offset in NDC units
-    uint pad0;
-    uint pad1;
+    uint firstTriangle; // global index of the draw's first triangle (GpuScene order)
+    uint vertexOffset;  // the draw's vertex offset
 };
 BL_STATIC_ASSERT(sizeof(GBufferPush) == 96, "GBufferPush layout");
 
