@@ -14,7 +14,7 @@ namespace {
 const ModeEntry kModes[] = {
     {"atlas", "diffuse radiance exchange in a texture atlas along sorted global ray-bundles [HHGM10 Eq. 3]", true,
      &AtlasMode::parameters, &AtlasMode::create},
-    {"bidir", "real-time bidirectional one-bounce light: VPLs + ray-bundles with MIS [TO12 Eq. 3-6]", true,
+    {"bidir", "real-time bidirectional path tracing: VPLs + ray-bundles with MIS, one and two bounces, glossy suppression [TO12 Eq. 3-17]", true,
      &BidirMode::parameters, &BidirMode::create},
     {"multibounce", "global illumination of any path length through K resident omnidirectional bundles [TO12 section 7]",
      true, &MultibounceMode::parameters, &MultibounceMode::create},
