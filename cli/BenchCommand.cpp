@@ -33,6 +33,7 @@ struct BenchOptions {
     std::uint64_t synthetic = 0;
     std::string json;
     std::string device;
+    std::string backend = "raster";
 };
 
 // A height field of `triangles` triangles over [-1, 1]^2: a stand-in for a dense scan.
@@ -77,19 +78,20 @@ int runBench(const BenchOptions& o) {
     gpu::GpuScene gpuScene(ctx, scene);
     BundleBuilderOptions options;
     options.listStatistics = true;
+    options.backend = o.backend == "compute" ? BundleBackend::Compute : BundleBackend::Raster;
     BundleBuilder builder(ctx, gpuScene, options);
     DirectionSampler sampler(DirectionSequence::Halton, 0);
     const Bounds b = scene.bounds();
-    std::printf("device: %s\nscene: %s, %zu triangles, subgroup allocation %s, exact depths %s\n",
-                ctx.info().describe().c_str(), name.c_str(), scene.triangleCount(), builder.usesSubgroups() ? "yes" : "no",
-                builder.exactDepths() ? "yes" : "no");
+    std::printf("device: %s\nscene: %s, %zu triangles, build backend %s, subgroup allocation %s, exact depths %s\n",
+                ctx.info().describe().c_str(), name.c_str(), scene.triangleCount(), o.backend.c_str(),
+                builder.usesSubgroups() ? "yes" : "no", builder.exactDepths() ? "yes" : "no");
     std::printf("%10s %12s %10s %10s %10s %12s %8s %8s %10s\n", "resolution", "fragments", "floor ms", "build ms",
                 "walk ms", "(b+w)/floor", "mean len", "max len", "rebuilds");
     std::ostringstream json;
     JsonWriter w(json);
     w.beginObject().field("scene", name).field("triangles", static_cast<unsigned long long>(scene.triangleCount()));
     w.field("device", ctx.info().describe()).field("git_revision", currentRunEnvironment().gitRevision);
-    w.field("directions", o.directions).field("subgroup_allocation", builder.usesSubgroups());
+    w.field("directions", o.directions).field("backend", o.backend).field("subgroup_allocation", builder.usesSubgroups());
     w.key("results").beginArray();
     for (std::uint32_t res : o.resolutions) {
         std::vector<double> floorMs, buildMs, walkMs, fragments, meanLength;
@@ -139,6 +141,8 @@ void addBenchCommand(CLI::App& app, Action& action) {
         ->check(CLI::Range(2ull, 100000000ull));
     cmd->add_option("--json", o->json, "also write the results as JSON");
     cmd->add_option("--device", o->device, "Vulkan device: index or name substring");
+    cmd->add_option("--backend", o->backend, "bundle build: raster (graphics pipeline) or compute (floor: raster)")
+        ->check(CLI::IsMember({"raster", "compute"}));
     cmd->callback([o, &action] { action = [o] { return runBench(*o); }; });
 }
 

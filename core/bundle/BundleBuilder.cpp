@@ -29,6 +29,12 @@ BundleBuilder::BundleBuilder(const vk::Context& ctx, const gpu::GpuScene& scene,
                             VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                         vk::MemoryUse::Device);
     mTimer = vk::GpuTimer(ctx);
+    if (options.backend == BundleBackend::Compute) {
+        if (options.payload != BundlePayload::None) {
+            throw Error("bundle backend compute: visibility bundles only (no hit payload)");
+        }
+        mCompute = std::make_unique<ComputeBundleRasterizer>(ctx, scene);
+    }
 }
 
 bool BundleBuilder::usesSubgroups() const { return mPool && mPool->usesSubgroups(); }
@@ -54,6 +60,8 @@ BundleBuilder::Attempt BundleBuilder::buildOnce(const shader::BundleFrame& frame
         mPool->recordReset(cmd);
         if (countOnly) {
             mPool->recordCount(cmd, frame, time, &mTimer);
+        } else if (mCompute) {
+            mCompute->record(cmd, *mPool, 0, frame, time, &mTimer);
         } else {
             mPool->recordBuild(cmd, 0, frame, BundleGeometry::triangles(time), &mTimer);
         }

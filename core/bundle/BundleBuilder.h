@@ -9,17 +9,23 @@
 #pragma once
 
 #include "bundle/BundlePool.h"
+#include "bundle/ComputeBundleRasterizer.h"
 
 #include <functional>
 #include <memory>
 
 namespace bl {
 
+// Who rasterizes the triangles: the graphics pipeline (BundlePool::recordBuild) or compute
+// shaders (ComputeBundleRasterizer: visibility bundles, no payload).
+enum class BundleBackend { Raster, Compute };
+
 struct BundleBuilderOptions {
     BundlePayload payload = BundlePayload::None;
     std::uint64_t initialNodes = 0;          // pool size at start (0: 4 per pixel of the first frame)
     std::uint64_t memoryCapBytes = 1ull << 30; // pool (+ payload) never exceeds this
     bool subgroupAllocation = true;          // used when the device supports it
+    BundleBackend backend = BundleBackend::Raster;
     bool listStatistics = false;             // longest list, non-empty pixels (one extra pass that
                                              // walks every list: also the traversal benchmark)
 };
@@ -81,6 +87,7 @@ private:
     const gpu::GpuScene* mScene;
     BundleBuilderOptions mOptions;
     std::unique_ptr<BundlePool> mPool;
+    std::unique_ptr<ComputeBundleRasterizer> mCompute; // backend = Compute
     vk::Buffer mStats;
     vk::GpuTimer mTimer;
 };

@@ -51,6 +51,21 @@ std::uint32_t payloadBytes(BundlePayload payload) {
 std::span<const std::uint32_t> spv(std::span<const std::uint32_t> s) { return s; }
 } // namespace
 
+TriangleBufferSet makeTriangleBufferSet(VkDevice device, const gpu::GpuScene& scene, VkShaderStageFlags stages) {
+    TriangleBufferSet t;
+    t.layout = vk::makeDescriptorSetLayout(device, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages},
+                                                    {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages},
+                                                    {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages}});
+    t.pool = vk::DescriptorPool(device, 1, 3);
+    t.set = t.pool.allocate(t.layout.get());
+    vk::DescriptorWriter()
+        .buffer(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.planeBuffer())
+        .buffer(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.vertexBuffer())
+        .buffer(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.indexBuffer())
+        .update(device, t.set);
+    return t;
+}
+
 VkDeviceAddress deviceAddress(const vk::Context& ctx, const vk::Buffer& buffer) {
     if (!buffer.get()) return 0;
     VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
@@ -113,17 +128,8 @@ BundlePool::BundlePool(const vk::Context& ctx, const gpu::GpuScene& scene, const
 
     VkDevice device = ctx.device();
     // Exact variants read the triangle's plane and corners (hit payload) by primitive id.
-    mSetLayout = vk::makeDescriptorSetLayout(device, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kDrawStages},
-                                                      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kDrawStages},
-                                                      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kDrawStages}});
-    mDescriptorPool = vk::DescriptorPool(device, 1, 3);
-    mSet = mDescriptorPool.allocate(mSetLayout.get());
-    vk::DescriptorWriter()
-        .buffer(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.planeBuffer())
-        .buffer(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.vertexBuffer())
-        .buffer(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.indexBuffer())
-        .update(device, mSet);
-    VkDescriptorSetLayout layouts[] = {mSetLayout.get()};
+    mTriangles = makeTriangleBufferSet(device, scene, kDrawStages);
+    VkDescriptorSetLayout layouts[] = {mTriangles.layout.get()};
     mDrawLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BundleDrawPush), kDrawStages);
     mComputeLayout = vk::makePipelineLayout(device, {}, sizeof(shader::BundlePoolPush), VK_SHADER_STAGE_COMPUTE_BIT);
 
@@ -259,7 +265,7 @@ void BundlePool::recordTriangles(VkCommandBuffer cmd, std::uint32_t slot, const 
         }
     } else {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mDrawLayout.get(), 0, 1, &mSet, 0, nullptr);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mDrawLayout.get(), 0, 1, &mTriangles.set, 0, nullptr);
         mScene->bindGeometry(cmd);
         for (const gpu::GpuDraw& d : mScene->draws()) {
             push.model = mScene->modelMatrix(d.mesh, time);

@@ -65,6 +65,15 @@ struct BundlePoolStatus {
     bool overflowed() const { return requested > capacity; }
 };
 
+// The scene's triangles as the exact builds read them by primitive id: storage buffers at binding
+// 0 (planes), 1 (vertices) and 2 (indices) of one descriptor set (BundlePool, ComputeBundleRasterizer).
+struct TriangleBufferSet {
+    vk::DescriptorSetLayout layout;
+    vk::DescriptorPool pool;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+};
+TriangleBufferSet makeTriangleBufferSet(VkDevice device, const gpu::GpuScene& scene, VkShaderStageFlags stages);
+
 class BundlePool {
 public:
     // `scene` provides the triangles (and the planes for exact depths); it must outlive the pool.
@@ -127,9 +136,7 @@ private:
     vk::Buffer mNodes;
     vk::Buffer mPayload;
     vk::Buffer mPrevious;
-    vk::DescriptorSetLayout mSetLayout;
-    vk::DescriptorPool mDescriptorPool;
-    VkDescriptorSet mSet = VK_NULL_HANDLE;
+    TriangleBufferSet mTriangles;
     vk::PipelineLayout mDrawLayout;
     vk::PipelineLayout mComputeLayout;
     vk::Pipeline mTrianglePipeline;

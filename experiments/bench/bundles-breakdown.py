@@ -18,7 +18,8 @@ for path in sys.argv[1:]:
     d = json.load(open(path))
     rows = d["results"]
     frags = [r["fragments_median"] for r in rows]
-    print(f"\n### {d['scene'].split('/')[-1]} ({d['triangles']} triangles), {d['directions']} directions, {d['device']}\n")
+    print(f"\n### {d['scene'].split('/')[-1]} ({d['triangles']} triangles), {d.get('backend', 'raster')} build, "
+          f"{d['directions']} directions, {d['device']}\n")
     print("| resolution | fragments | floor ms | build ms | walk ms | (b+w)/floor | build-floor ns/fragment | walk ns/node |")
     print("|---|---|---|---|---|---|---|---|")
     for r in rows:

@@ -6,15 +6,16 @@
 # work, triangle setup and binning of every triangle, the head reset) from a per-fragment part
 # (rasterization + fragment shader for the floor; + head exchange and node store for the build;
 # one list step for the walk).
-#   experiments/bench/bundles-breakdown.sh [OUTDIR] [DIRECTIONS] [BUNDLELAB]
+#   experiments/bench/bundles-breakdown.sh [OUTDIR] [DIRECTIONS] [BUNDLELAB] [BACKEND: raster | compute]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 out=${1:-$root/out/bench/bundles-breakdown}
 directions=${2:-8}
 bl=${3:-$root/build/bundlelab}
+backend=${4:-raster}
 shared=$root/../shared/data
 mkdir -p "$out"
-res=(--resolution 64 --resolution 512 --resolution 1024 --resolution 2048)
+res=(--resolution 64 --resolution 512 --resolution 1024 --resolution 2048 --backend "$backend")
 uptime | tee "$out/load.txt"
 "$bl" bench bundles "$root/data/external/sponza-point.toml" "${res[@]}" --directions "$directions" --json "$out/sponza.json" | tee "$out/sponza.txt"
 "$bl" bench bundles "$shared/bunny/mcguire/bunny.obj" "${res[@]}" --directions "$directions" --json "$out/bunny.json" | tee "$out/bunny.txt"

@@ -19,6 +19,9 @@
 //   memory_cap_mib     1024      bundle node pool limit (beyond: tiles)
 //   visibility         bundle    bundle (omega and -omega for every point) or depth_map (a
 //                                directional shadow map: omega only; the comparison of [TO12])
+//   bundle_backend     raster    raster (graphics pipeline), compute (ComputeBundleRasterizer) or
+//                                auto (compute on GPUs, raster on CPU devices: lavapipe builds faster
+//                                with raster, experiments/bench/results/bundles-breakdown-*.md)
 //   control_variate    off       on: each sample becomes (albedo/pi) E(n) + [V L_e f (n.d) -
 //                                L_e (albedo/pi) (n.d)] / p(d) with E(n) the unoccluded irradiance
 //                                tabulated once per map (IrradianceTable.h): same mean, and the
@@ -45,6 +48,7 @@ public:
     static constexpr const char* kMemoryCap = "memory_cap_mib";
     static constexpr const char* kVisibility = "visibility";
     static constexpr const char* kControlVariate = "control_variate";
+    static constexpr const char* kBundleBackend = "bundle_backend";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);

@@ -8,6 +8,7 @@
 //   BL_COUNT_ONLY           the benchmark floor: allocate (count) and store nothing
 // A fragment that finds the pool full is counted, never stored (BundleTypes.h: BundleCounters).
 #include "bundle/BundleBuffers.glsl"
+#include "bundle/PoolNodes.glsl"
 #include "bundle/Projection.glsl"
 #include "shared/GpuTypes.h"
 #include "shared/Barycentrics.h"
@@ -32,13 +33,6 @@ layout(set = 0, binding = 1) readonly buffer VertexBlock { GpuVertex vertices[];
 layout(set = 0, binding = 2) readonly buffer IndexBlock { uint indices[]; };
 #endif
 
-void addExcess(BundleCounterBlock block, uint count) {
-    uint old = atomicAdd(block.counters.excessLow, count);
-    if (old + count < old) {
-        atomicAdd(block.counters.excessHigh, 1u);
-    }
-}
-
 // A node index for each live invocation, or kBundleNil when the pool is full (then counted).
 uint allocateNode(BundleCounterBlock block, bool live) {
 #ifdef BL_SUBGROUP_ALLOCATION
@@ -54,7 +48,7 @@ uint allocateNode(BundleCounterBlock block, bool live) {
         if (block.counters.allocated < block.counters.capacity) {
             base = atomicAdd(block.counters.allocated, count);
         } else {
-            addExcess(block, count);
+            blPoolAddExcess(block, count);
         }
     }
     base = subgroupShuffle(base, leader);
@@ -62,32 +56,17 @@ uint allocateNode(BundleCounterBlock block, bool live) {
         return kBundleNil;
     }
     uint index = base + subgroupBallotExclusiveBitCount(ballot);
-#else
-    if (!live) {
-        return kBundleNil;
-    }
-    if (block.counters.allocated >= block.counters.capacity) {
-        addExcess(block, 1u);
-        return kBundleNil;
-    }
-    uint index = atomicAdd(block.counters.allocated, 1u);
-#endif
     return index < block.counters.capacity ? index : kBundleNil;
+#else
+    return live ? blPoolAllocateOne(block) : kBundleNil;
+#endif
 }
 
 // The pixel centre's ray (at depth 0) in world space.
 vec3 pixelRay(BundleFrame frame) { return blBundlePixelRay(frame, gl_FragCoord.xy); }
 
-// Depth along omega where the ray meets the plane (n, offset): false when the ray runs inside it
-// (or the plane is degenerate: GpuScene gives such triangles a zero normal).
 bool planeDepth(BundleFrame frame, vec3 n, float offset, out float depth, out bool frontFacesMinusOmega) {
-    float cosine = dot(n, frame.direction);
-    frontFacesMinusOmega = cosine < 0.0;
-    if (cosine == 0.0) {
-        return false;
-    }
-    depth = (offset - dot(n, pixelRay(frame))) / cosine;
-    return abs(depth) < 3.0e38;
+    return blPoolPlaneDepth(frame, pixelRay(frame), n, offset, depth, frontFacesMinusOmega);
 }
 
 // A unit vector along v, or `fallback` when v cancelled to (nearly) zero: normalize(0) is NaN.
@@ -133,9 +112,7 @@ void main() {
         planeNormal = n;
     }
 #endif
-    uint face = front ? kBundleFrontFaceBit : 0u;
-    uint previous = atomicExchange(BundleHeads(push.headAddress).heads[pixel], index);
-    BundleNodes(push.nodeAddress).nodes[index] = BundleNode(depth, (previous & kBundleIndexMask) | face);
+    blPoolLink(push.headAddress, push.nodeAddress, pixel, index, depth, front);
 #if defined(BL_SPLATS) || defined(BL_EXACT_DEPTH)
     if (push.payloadKind == kBundlePayloadHit) {
         BundleHit hit;

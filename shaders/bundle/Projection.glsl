@@ -35,16 +35,22 @@ vec2 blBundleViewportExtent(BundleFrame frame) {
                 frame.gridHeight <= 1u ? 1u : 1u << (findMSB(frame.gridHeight - 1u) + 1));
 }
 
+// p's position in the whole grid snapped to 1/kBundleSubpixelGrid of a pixel (where both build
+// backends place a vertex), and p's depth.
+vec2 blBundleSnappedGrid(BundleFrame frame, vec3 p, out float depth) {
+    vec3 g = blBundleGridPosition(frame, p);
+    depth = g.z;
+    return round(g.xy * kBundleSubpixelGrid) / kBundleSubpixelGrid;
+}
+
 // Clip position of p for the build's rasterizer, and p's depth. Every tile outputs the whole
 // frame's clip position (its viewport is shifted instead), so clipping cuts the same triangles at
 // the same places; the window position is snapped to 1/kBundleSubpixelGrid of a pixel first, after
 // which the viewport transform is exact. A tile thus rasterizes each triangle exactly as the whole
 // frame does (the rasterizer's own snapping agrees too, whatever its subpixel precision).
 vec4 blBundleClipPosition(BundleFrame frame, vec3 p, out float depth) {
-    vec3 g = blBundleGridPosition(frame, p);
-    depth = g.z;
-    vec2 window = round(g.xy * kBundleSubpixelGrid) / kBundleSubpixelGrid;
+    vec2 window = blBundleSnappedGrid(frame, p, depth);
     vec2 ndc = window * (2.0 / blBundleViewportExtent(frame)) - 1.0;
-    return vec4(ndc, (g.z - frame.depthNear) / (frame.depthFar - frame.depthNear), 1.0);
+    return vec4(ndc, (depth - frame.depthNear) / (frame.depthFar - frame.depthNear), 1.0);
 }
 #endif

@@ -135,6 +135,24 @@ TEST_F(Skylight, TilesUnderAMemoryCapGiveTheSameImage) {
     EXPECT_EQ(whole.radiance().pixels(), tiled.radiance().pixels());
 }
 
+// bundle_backend = compute (software rasterization in compute shaders) gives the raster backend's
+// image: the same bundle nodes up to pixel centres exactly on shared edges (BundleExactness tests),
+// so at most a few pixels may differ, and the image mean agrees to 1e-4.
+TEST_F(Skylight, ComputeBackendGivesTheRasterImage) {
+    Scene s = loadSmall("data/analytic/ao-blocks.toml", 48);
+    Image raster = render(s, 16, {"bundle_resolution=256"});
+    Image compute = render(s, 16, {"bundle_resolution=256", "bundle_backend=compute"});
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < raster.pixelCount(); ++i) {
+        differing += glm::length(compute.pixels()[i] - raster.pixels()[i]) > 1e-4f;
+    }
+    const double meanRaster = raster.mean().y, meanCompute = compute.mean().y;
+    std::printf("compute vs raster backend: %zu of %zu pixels differ, image means %.6f / %.6f\n", differing,
+                raster.pixelCount(), meanCompute, meanRaster);
+    EXPECT_LE(differing, raster.pixelCount() / 100);
+    EXPECT_NEAR(meanCompute / meanRaster, 1.0, 1e-4);
+}
+
 // fit = visible: every camera-visible point of every jittered iteration must fall inside that
 // iteration's bundle frame. A frame fitted once to the first G-buffer lost the points jitter
 // moved past its margin (77 samples at 512^2 and 64 iterations), counted as NaN/Inf.

@@ -1,0 +1,89 @@
+#include "bundle/ComputeBundleRasterizer.h"
+
+#include "base/Error.h"
+#include "vk/Commands.h"
+
+#include <algorithm>
+
+#include <bundle/ComputeBuildShared.h>
+#include <bundle/compute_clear.comp.spv.h>
+#include <bundle/compute_triangles.comp.spv.h>
+
+namespace bl {
+
+namespace {
+VkDeviceAddress join(glm::uvec2 v) { return VkDeviceAddress(v.x) | VkDeviceAddress(v.y) << 32; }
+} // namespace
+
+bool ComputeBundleRasterizer::supported(const vk::Context& ctx) {
+    VkPhysicalDeviceFeatures features{};
+    vkGetPhysicalDeviceFeatures(ctx.physicalDevice(), &features);
+    return features.shaderInt64 == VK_TRUE;
+}
+
+ComputeBundleRasterizer::ComputeBundleRasterizer(const vk::Context& ctx, const gpu::GpuScene& scene)
+    : mContext(&ctx), mScene(&scene) {
+    if (!supported(ctx)) {
+        throw Error("bundle_backend = compute needs shaderInt64, which '" + ctx.info().name + "' lacks");
+    }
+    VkDevice device = ctx.device();
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    mTriangles = makeTriangleBufferSet(device, scene, cs);
+    VkDescriptorSetLayout layouts[] = {mTriangles.layout.get()};
+    static_assert(sizeof(shader::BundleComputeClearPush) >= sizeof(shader::BundleComputePush));
+    mLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BundleComputeClearPush), cs);
+    mClearPipeline = vk::makeComputePipeline(device, kSpv_bundle_compute_clear_comp, mLayout.get());
+    mTrianglePipeline = vk::makeComputePipeline(device, kSpv_bundle_compute_triangles_comp, mLayout.get());
+}
+
+void ComputeBundleRasterizer::record(VkCommandBuffer cmd, const BundlePool& pool, std::uint32_t slot,
+                                     const shader::BundleFrame& frame, double time, vk::GpuTimer* timer) const {
+    if (pool.payload() != BundlePayload::None) {
+        throw Error("bundle_backend = compute builds visibility bundles only (no hit payload): use raster");
+    }
+    const std::uint32_t pixels = frame.width * frame.height;
+    if (slot >= pool.slots() || pixels > pool.slotPixels() || pixels == 0) {
+        throw Error("compute bundle build: slot " + std::to_string(slot) + " of " + std::to_string(pool.slots()) +
+                    ", frame of " + std::to_string(pixels) + " pixels for slots of " +
+                    std::to_string(pool.slotPixels()));
+    }
+    const shader::BundlePoolView view = pool.view();
+    const VkDeviceAddress heads = join(view.heads) + VkDeviceAddress(slot) * pool.slotPixels() * sizeof(std::uint32_t);
+    const VkDeviceAddress frames = join(view.frames) + VkDeviceAddress(slot) * sizeof(shader::BundleFrame);
+    const std::uint32_t scope = timer ? timer->start(cmd, "bundle build (compute)") : 0;
+
+    shader::BundleComputeClearPush clear{};
+    clear.frame = frame;
+    clear.frameAddress = splitAddress(frames);
+    clear.headAddress = splitAddress(heads);
+    clear.pixels = pixels;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mClearPipeline.get());
+    vkCmdPushConstants(cmd, mLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(clear), &clear);
+    vkCmdDispatch(cmd, vk::groupCount(pixels, shader::kBundleComputeGroupSize), 1, 1);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+
+    shader::BundleComputePush push{};
+    push.frameAddress = splitAddress(frames);
+    push.headAddress = splitAddress(heads);
+    push.nodeAddress = view.nodes;
+    push.counterAddress = view.counters;
+    push.rowsPerBand = std::max(1u, shader::kBundleComputeBandPixels / frame.width);
+    const std::uint32_t bands = (frame.height + push.rowsPerBand - 1) / push.rowsPerBand;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mTrianglePipeline.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mLayout.get(), 0, 1, &mTriangles.set, 0, nullptr);
+    for (const gpu::GpuDraw& d : mScene->draws()) {
+        push.model = mScene->modelMatrix(d.mesh, time);
+        push.firstPrimitive = d.firstIndex / 3;
+        push.vertexOffset = static_cast<std::uint32_t>(d.vertexOffset);
+        push.triangleCount = d.indexCount / 3;
+        if (push.triangleCount == 0) continue;
+        vkCmdPushConstants(cmd, mLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdDispatch(cmd, vk::groupCount(push.triangleCount, shader::kBundleComputeGroupSize), bands, 1);
+    }
+    if (timer) timer->stop(cmd, scope);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                          VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_HOST_BIT);
+}
+
+} // namespace bl

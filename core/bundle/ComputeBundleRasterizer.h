@@ -1,0 +1,38 @@
+// The compute bundle backend (`bundle_backend = compute`): the triangles of a scene rasterized
+// into a BundlePool slot by compute shaders instead of the graphics pipeline, for devices whose
+// fixed-function rasterization is small or slow (issue 14). Same contract as
+// BundlePool::recordBuild: after recordReset, any number of builds into any slots; the nodes are
+// those of the rasterized exact build (pixel centres inside the snapped triangle, exact plane
+// depth and face: shaders/bundle/compute_triangles.comp.glsl); a pool that runs out counts what it
+// could not store (status()), and the caller grows it and builds again.
+//
+// Scope: triangles without payload (visibility bundles: skylight). Point splats and the hit
+// payload stay with the rasterized build (record throws). Needs shaderInt64 (exact edge functions).
+// One invocation per triangle and band of tile rows (kBundleComputeBandPixels pixels at most), so
+// every small triangle still costs one set-up per band (see experiments/bench/results).
+#pragma once
+
+#include "bundle/BundlePool.h"
+
+namespace bl {
+
+class ComputeBundleRasterizer {
+public:
+    ComputeBundleRasterizer(const vk::Context& ctx, const gpu::GpuScene& scene);
+
+    // True when the device can run it (shaderInt64).
+    static bool supported(const vk::Context& ctx);
+
+    void record(VkCommandBuffer cmd, const BundlePool& pool, std::uint32_t slot, const shader::BundleFrame& frame,
+                double time, vk::GpuTimer* timer = nullptr) const;
+
+private:
+    const vk::Context* mContext;
+    const gpu::GpuScene* mScene;
+    TriangleBufferSet mTriangles;
+    vk::PipelineLayout mLayout;
+    vk::Pipeline mClearPipeline;
+    vk::Pipeline mTrianglePipeline;
+};
+
+} // namespace bl

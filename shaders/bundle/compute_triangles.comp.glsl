@@ -1,0 +1,106 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+// Compute bundle build (bundle_backend = compute): software rasterization of one draw's triangles,
+// one invocation per triangle. The same nodes as the rasterized exact build (PoolAppend.glsl with
+// BL_EXACT_DEPTH): vertices snapped to the subpixel grid where the rasterizer places them
+// (Projection.glsl), pixel centres tested with exact 64-bit edge functions and a top-left rule
+// (a centre on an edge shared by two triangles goes to exactly one), depth and face from the
+// triangle's plane along the pixel's ray, the allocator's overflow contract and the list link
+// from PoolNodes.glsl. No payload (the rasterized build writes it).
+//
+// Invocation (t, c) walks triangle t's pixels in the c-th band of push.rowsPerBand tile rows: no
+// invocation loops more than ~32k times. (lavapipe's shader compiler ends any loop after 65535
+// iterations, counting a nested loop's iterations over all passes of the outer one: a triangle
+// walked whole lost its fragments beyond that, 20% of them in Sponza at 1024^2.)
+#include "bundle/ComputeBuildShared.h"
+#include "bundle/PoolNodes.glsl"
+#include "bundle/Projection.glsl"
+#include "shared/GpuTypes.h"
+
+layout(local_size_x = kBundleComputeGroupSize) in;
+layout(push_constant) uniform PushBlock { BundleComputePush push; };
+layout(set = 0, binding = 0) readonly buffer PlaneBlock { vec4 planes[]; };
+layout(set = 0, binding = 1) readonly buffer VertexBlock { GpuVertex vertices[]; };
+layout(set = 0, binding = 2) readonly buffer IndexBlock { uint indices[]; };
+
+// Subpixel units: 1 / kBundleSubpixelGrid of a pixel.
+const int64_t kUnit = int64_t(kBundleSubpixelGrid);
+
+// Edge a -> b owns the centres exactly on it when it is a "top" or "left" edge of a
+// counter-clockwise triangle: of the two directions of a shared edge exactly one does.
+bool ownsCentresOnEdge(i64vec2 a, i64vec2 b) {
+    i64vec2 e = b - a;
+    return e.y < 0 || (e.y == 0 && e.x > 0);
+}
+
+int64_t edgeFunction(i64vec2 a, i64vec2 b, i64vec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); }
+
+void main() {
+    uint local = gl_GlobalInvocationID.x;
+    if (local >= push.triangleCount) {
+        return;
+    }
+    BundleFrame frame = BundleFrames(push.frameAddress).frames[0];
+    BundleCounterBlock block = BundleCounterBlock(push.counterAddress);
+    uint triangle = push.firstPrimitive + local;
+    i64vec2 v[3];
+    for (uint k = 0u; k < 3u; ++k) {
+        GpuVertex vertex = vertices[indices[3u * triangle + k] + push.vertexOffset];
+        float depthIgnored;
+        vec2 snapped = blBundleSnappedGrid(frame, (push.model * vec4(vertex.positionU.xyz, 1.0)).xyz, depthIgnored);
+        if (any(isnan(snapped)) || any(isinf(snapped)) || any(greaterThan(abs(snapped), vec2(1.0e9)))) {
+            return; // a vertex the rasterizer would clip away entirely or cannot place
+        }
+        v[k] = i64vec2(snapped * kBundleSubpixelGrid); // exact: snapped is a multiple of 1/grid
+    }
+    int64_t area = edgeFunction(v[0], v[1], v[2]);
+    if (area == 0) {
+        return; // no pixel centre lies strictly inside a degenerate projection
+    }
+    if (area < 0) {
+        i64vec2 t = v[1];
+        v[1] = v[2];
+        v[2] = t;
+    }
+    vec4 plane = planes[triangle];
+    vec3 n = mat3(push.model) * plane.xyz;
+    float offset = plane.w + dot(n, push.model[3].xyz);
+    if (dot(n, n) == 0.0) {
+        return; // GpuScene's kNoPlane: collinear or non-finite corners, nothing to hit
+    }
+    // Pixels of the tile whose centres (x + 1/2, y + 1/2 in the whole grid) lie in the bounding box.
+    i64vec2 lo = min(v[0], min(v[1], v[2])), hi = max(v[0], max(v[1], v[2]));
+    int64_t half_ = kUnit / 2;
+    int x0 = int(max((lo.x - half_ + kUnit - 1) / kUnit, int64_t(frame.tileX)));
+    int y0 = int(max((lo.y - half_ + kUnit - 1) / kUnit, int64_t(frame.tileY)));
+    int x1 = int(min((hi.x - half_) / kUnit, int64_t(frame.tileX + frame.width) - 1));
+    int y1 = int(min((hi.y - half_) / kUnit, int64_t(frame.tileY + frame.height) - 1));
+    // Negative numerators round toward zero above; centres below 0 are outside every tile anyway.
+    x0 = max(x0, int(frame.tileX));
+    y0 = max(y0, int(frame.tileY));
+    int bandFirst = int(frame.tileY) + int(gl_GlobalInvocationID.y * push.rowsPerBand);
+    y0 = max(y0, bandFirst);
+    y1 = min(y1, bandFirst + int(push.rowsPerBand) - 1);
+    bool own0 = ownsCentresOnEdge(v[1], v[2]), own1 = ownsCentresOnEdge(v[2], v[0]), own2 = ownsCentresOnEdge(v[0], v[1]);
+    for (int y = y0; y <= y1; ++y) {
+        for (int x = x0; x <= x1; ++x) {
+            i64vec2 c = i64vec2(int64_t(x) * kUnit + half_, int64_t(y) * kUnit + half_);
+            int64_t e0 = edgeFunction(v[1], v[2], c), e1 = edgeFunction(v[2], v[0], c), e2 = edgeFunction(v[0], v[1], c);
+            if (e0 < 0 || e1 < 0 || e2 < 0 || (e0 == 0 && !own0) || (e1 == 0 && !own1) || (e2 == 0 && !own2)) {
+                continue;
+            }
+            ivec2 pixel = ivec2(x - int(frame.tileX), y - int(frame.tileY));
+            float depth;
+            bool front;
+            if (!blPoolPlaneDepth(frame, blBundlePixelRay(frame, vec2(pixel) + 0.5), n, offset, depth, front) ||
+                depth < frame.depthNear || depth > frame.depthFar) {
+                continue;
+            }
+            uint index = blPoolAllocateOne(block);
+            if (index != kBundleNil) {
+                blPoolLink(push.headAddress, push.nodeAddress, uint(pixel.y) * frame.width + uint(pixel.x), index, depth, front);
+            }
+        }
+    }
+}
