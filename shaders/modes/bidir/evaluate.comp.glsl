@@ -215,7 +215,8 @@ void main() {
     }
     // The pool contract: a build that ran out of nodes left lists incomplete; the mode grows the
     // pool and redoes the frame, so nothing of this one may be added.
-    if ((push.strategy != kBidirStrategyVpl || push.bounces >= 2u) && blBundlePoolOverflowed(BundleCounterBlock(push.pool.counters))) {
+    // pairs = 0 (no point/spot light): no pool is bound, its address is 0 and must not be read.
+    if (push.pairs > 0u && (push.strategy != kBidirStrategyVpl || push.bounces >= 2u) && blBundlePoolOverflowed(BundleCounterBlock(push.pool.counters))) {
         return;
     }
     if (!blCameraHitSurface(pixel)) {

@@ -320,3 +320,29 @@ TEST_F(Bidir, PlanSkipsSuppressionWithoutGlossyMaterialImageUnchanged) {
     const auto glossyNone = render(glossy, "none", false);
     EXPECT_FALSE(same(suppressed.first, glossyNone.first));
 }
+
+// A scene without point or spot lights (the area-lit Cornell box): no VPLs, no bundles, no pool
+// bound; every strategy renders the emitters and nothing else (it read the unbound pool's
+// address 0 and crashed the device before), as the plan says.
+TEST_F(Bidir, SceneWithoutPointLightsRendersEmittersOnly) {
+    Scene s = loadScene(bl::test::sourcePath("data/cornell-box/cornell.toml"));
+    s.camera.resolution = {16, 16};
+    for (const char* strategy : {"vpl", "bundle", "mis"}) {
+        std::unique_ptr<Mode> mode = createMode("bidir", {std::string("strategy=") + strategy, "pairs_per_frame=2"});
+        mode->setScene(s, &ctx());
+        for (std::uint32_t f = 0; f < 2; ++f) mode->iterate({f, 1, 0.0});
+        ImageSet out = mode->resolve();
+        EXPECT_EQ(out.nonFiniteSamples, 0u);
+        double emitted = 0.0, rest = 0.0;
+        for (int y = 0; y < 16; ++y) {
+            for (int x = 0; x < 16; ++x) {
+                emitted += luminance(bl::test::layerOf(out, "emitted").at(x, y));
+                for (const char* layer : {"direct", "indirect1", "indirect2"}) {
+                    rest += luminance(bl::test::layerOf(out, layer).at(x, y));
+                }
+            }
+        }
+        EXPECT_GT(emitted, 0.0) << strategy;
+        EXPECT_EQ(rest, 0.0) << strategy;
+    }
+}
