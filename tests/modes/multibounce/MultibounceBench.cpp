@@ -4,8 +4,8 @@
 // variants on first use; the pool grows in the first iteration; static scenes render their shadow
 // cubes once). Both bundle kinds run in the same process, one after the other, per scene.
 //
-//   BL_BENCH_SCENES=a.toml,b.toml BL_BENCH_WARMUP=2 BL_BENCH_ITERATIONS=5 \
-//   BL_BENCH_SETTINGS="bundle_count=16,points=16384" \
+//   BL_BENCH_SCENES=a.toml,b.toml BL_BENCH_WARMUP=2 BL_BENCH_ITERATIONS=5
+//   BL_BENCH_SETTINGS="bundle_count=16,points=16384"   (environment, all optional)
 //   test_multibounce --gtest_also_run_disabled_tests --gtest_filter='MultibounceBench.*'
 //
 // Groups: build = surface points + bundle build + bundle sort; paths = the path pass (stepping and
