@@ -32,6 +32,12 @@ ComputeBundleRasterizer::ComputeBundleRasterizer(const vk::Context& ctx, const g
     VkDescriptorSetLayout layouts[] = {mTriangles.layout.get()};
     static_assert(sizeof(shader::BundleComputeClearPush) >= sizeof(shader::BundleComputePush));
     mLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BundleComputeClearPush), cs);
+    std::uint32_t largestDraw = 1;
+    for (const gpu::GpuDraw& d : scene.draws()) largestDraw = std::max(largestDraw, std::min(d.indexCount / 3, 65535u));
+    mBig = vk::Buffer(ctx, sizeof(shader::BundleComputeBigHeader) + VkDeviceSize(largestDraw) * sizeof(std::uint32_t),
+                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                          VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                      vk::MemoryUse::Device);
     mClearPipeline = vk::makeComputePipeline(device, kSpv_bundle_compute_clear_comp, mLayout.get());
     mTrianglePipeline = vk::makeComputePipeline(device, kSpv_bundle_compute_triangles_comp, mLayout.get());
 }
@@ -68,17 +74,34 @@ void ComputeBundleRasterizer::record(VkCommandBuffer cmd, const BundlePool& pool
     push.nodeAddress = view.nodes;
     push.counterAddress = view.counters;
     push.rowsPerBand = std::max(1u, shader::kBundleComputeBandPixels / frame.width);
-    const std::uint32_t bands = (frame.height + push.rowsPerBand - 1) / push.rowsPerBand;
+    push.bands = (frame.height + push.rowsPerBand - 1) / push.rowsPerBand;
+    push.bigAddress = splitAddress(deviceAddress(*mContext, mBig));
+    const shader::BundleComputeBigHeader empty{vk::groupCount(push.bands, shader::kBundleComputeGroupSize), 0, 1, 0};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mTrianglePipeline.get());
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mLayout.get(), 0, 1, &mTriangles.set, 0, nullptr);
+    // Draws in chunks of at most kChunk triangles: the big pass's indirect y count (the listed
+    // triangles) stays within every device's maxComputeWorkGroupCount (65535).
+    constexpr std::uint32_t kChunk = 65535;
     for (const gpu::GpuDraw& d : mScene->draws()) {
-        push.model = mScene->modelMatrix(d.mesh, time);
-        push.firstPrimitive = d.firstIndex / 3;
-        push.vertexOffset = static_cast<std::uint32_t>(d.vertexOffset);
-        push.triangleCount = d.indexCount / 3;
-        if (push.triangleCount == 0) continue;
+      push.model = mScene->modelMatrix(d.mesh, time);
+      push.vertexOffset = static_cast<std::uint32_t>(d.vertexOffset);
+      for (std::uint32_t first = 0; first < d.indexCount / 3; first += kChunk) {
+        push.firstPrimitive = d.firstIndex / 3 + first;
+        push.triangleCount = std::min(kChunk, d.indexCount / 3 - first);
+        // The previous draw's big pass read the list and its dispatch: reset them after it.
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                          VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+        vkCmdUpdateBuffer(cmd, mBig.get(), 0, sizeof(empty), &empty);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        push.pass = shader::kBundleComputeSmallPass;
         vkCmdPushConstants(cmd, mLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-        vkCmdDispatch(cmd, vk::groupCount(push.triangleCount, shader::kBundleComputeGroupSize), bands, 1);
+        vkCmdDispatch(cmd, vk::groupCount(push.triangleCount, shader::kBundleComputeGroupSize), 1, 1);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT);
+        push.pass = shader::kBundleComputeBigPass;
+        vkCmdPushConstants(cmd, mLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdDispatchIndirect(cmd, mBig.get(), 0);
+      }
     }
     if (timer) timer->stop(cmd, scope);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -8,8 +8,8 @@
 //
 // Scope: triangles without payload (visibility bundles: skylight). Point splats and the hit
 // payload stay with the rasterized build (record throws). Needs shaderInt64 (exact edge functions).
-// One invocation per triangle and band of tile rows (kBundleComputeBandPixels pixels at most), so
-// every small triangle still costs one set-up per band (see experiments/bench/results).
+// One invocation per triangle; a triangle whose box holds more than kBundleComputeBandPixels pixels
+// is walked by one invocation per band of rows instead (an indirect dispatch).
 #pragma once
 
 #include "bundle/BundlePool.h"
@@ -30,6 +30,7 @@ private:
     const vk::Context* mContext;
     const gpu::GpuScene* mScene;
     TriangleBufferSet mTriangles;
+    vk::Buffer mBig; // BundleComputeBigHeader + one uint per triangle of the largest draw
     vk::PipelineLayout mLayout;
     vk::Pipeline mClearPipeline;
     vk::Pipeline mTrianglePipeline;

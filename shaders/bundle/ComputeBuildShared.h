@@ -27,12 +27,31 @@ struct BundleComputePush {
     uint firstPrimitive;  // global index of the draw's first triangle
     uint vertexOffset;
     uint triangleCount;   // of this draw
-    uint rowsPerBand;     // tile rows one invocation walks (dispatch y: the bands)
+    uint rowsPerBand;     // tile rows one invocation of the big pass walks
+    uvec2 bigAddress;     // BundleComputeBig: the draw's triangles too large for one invocation
+    uint pass;            // kBundleComputeSmallPass or kBundleComputeBigPass
+    uint bands;           // tile rows / rowsPerBand, rounded up
 };
-BL_STATIC_ASSERT(sizeof(BundleComputePush) == 112, "BundleComputePush layout");
+BL_STATIC_ASSERT(sizeof(BundleComputePush) == 128, "BundleComputePush layout");
+
+// Triangles whose box holds more than kBundleComputeBandPixels pixels, listed by the small pass;
+// `dispatch` is the big pass's indirect dispatch (x: bands in groups, y: listed triangles).
+struct BundleComputeBigHeader {
+    uint dispatchX;
+    uint dispatchY;
+    uint dispatchZ;
+    uint pad0;
+};
+BL_STATIC_ASSERT(sizeof(BundleComputeBigHeader) == 16, "BundleComputeBigHeader layout");
+
+// Small pass: one invocation per triangle walks its whole box, or lists it as big. Big pass:
+// invocation (band, i) walks listed triangle i's rows in that band.
+BL_CONST uint kBundleComputeSmallPass = 0u;
+BL_CONST uint kBundleComputeBigPass = 1u;
 
 BL_CONST uint kBundleComputeGroupSize = 64u;
-// Most pixels one invocation walks (rowsPerBand = max(1, this / tile width)).
+// Most pixels one invocation walks (rowsPerBand = max(1, this / tile width); lavapipe ends a loop
+// after 65535 iterations).
 BL_CONST uint kBundleComputeBandPixels = 32768u;
 
 BL_NAMESPACE_END

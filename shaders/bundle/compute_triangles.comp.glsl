@@ -9,10 +9,12 @@
 // triangle's plane along the pixel's ray, the allocator's overflow contract and the list link
 // from PoolNodes.glsl. No payload (the rasterized build writes it).
 //
-// Invocation (t, c) walks triangle t's pixels in the c-th band of push.rowsPerBand tile rows: no
-// invocation loops more than ~32k times. (lavapipe's shader compiler ends any loop after 65535
-// iterations, counting a nested loop's iterations over all passes of the outer one: a triangle
-// walked whole lost its fragments beyond that, 20% of them in Sponza at 1024^2.)
+// No invocation loops more than kBundleComputeBandPixels times: the small pass walks each triangle
+// whose box is at most that large and lists the others, the big pass (an indirect dispatch) walks
+// each listed triangle in bands of push.rowsPerBand tile rows. (lavapipe's shader compiler ends
+// any loop after 65535 iterations, counting a nested loop's iterations over all passes of the
+// outer one: a triangle walked whole lost its fragments beyond that, 20% of them in Sponza at
+// 1024^2.)
 #include "bundle/ComputeBuildShared.h"
 #include "bundle/PoolNodes.glsl"
 #include "bundle/Projection.glsl"
@@ -23,6 +25,10 @@ layout(push_constant) uniform PushBlock { BundleComputePush push; };
 layout(set = 0, binding = 0) readonly buffer PlaneBlock { vec4 planes[]; };
 layout(set = 0, binding = 1) readonly buffer VertexBlock { GpuVertex vertices[]; };
 layout(set = 0, binding = 2) readonly buffer IndexBlock { uint indices[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer BigList {
+    BundleComputeBigHeader header;
+    uint triangles[];
+};
 
 // Subpixel units: 1 / kBundleSubpixelGrid of a pixel.
 const int64_t kUnit = int64_t(kBundleSubpixelGrid);
@@ -37,8 +43,10 @@ bool ownsCentresOnEdge(i64vec2 a, i64vec2 b) {
 int64_t edgeFunction(i64vec2 a, i64vec2 b, i64vec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); }
 
 void main() {
-    uint local = gl_GlobalInvocationID.x;
-    if (local >= push.triangleCount) {
+    const bool bigPass = push.pass == kBundleComputeBigPass;
+    BigList big = BigList(push.bigAddress);
+    uint local = bigPass ? big.triangles[gl_GlobalInvocationID.y] : gl_GlobalInvocationID.x;
+    if (local >= push.triangleCount || (bigPass && gl_GlobalInvocationID.x >= push.bands)) {
         return;
     }
     BundleFrame frame = BundleFrames(push.frameAddress).frames[0];
@@ -79,9 +87,14 @@ void main() {
     // Negative numerators round toward zero above; centres below 0 are outside every tile anyway.
     x0 = max(x0, int(frame.tileX));
     y0 = max(y0, int(frame.tileY));
-    int bandFirst = int(frame.tileY) + int(gl_GlobalInvocationID.y * push.rowsPerBand);
-    y0 = max(y0, bandFirst);
-    y1 = min(y1, bandFirst + int(push.rowsPerBand) - 1);
+    if (bigPass) {
+        int bandFirst = int(frame.tileY) + int(gl_GlobalInvocationID.x * push.rowsPerBand);
+        y0 = max(y0, bandFirst);
+        y1 = min(y1, bandFirst + int(push.rowsPerBand) - 1);
+    } else if (x1 >= x0 && y1 >= y0 && uint(x1 - x0 + 1) * uint(y1 - y0 + 1) > kBundleComputeBandPixels) {
+        big.triangles[atomicAdd(big.header.dispatchY, 1u)] = local;
+        return;
+    }
     bool own0 = ownsCentresOnEdge(v[1], v[2]), own1 = ownsCentresOnEdge(v[2], v[0]), own2 = ownsCentresOnEdge(v[0], v[1]);
     for (int y = y0; y <= y1; ++y) {
         for (int x = x0; x <= x1; ++x) {

@@ -334,7 +334,9 @@ TEST_F(BundleExactness, ComputeBuildMatchesTheRasterBuild) {
         const shader::BundleFrame frame = bundleFrameForSphere(d.omega, d.rotation, b.center(), b.radius(), c.resolution);
         const AssembledBundle reference = assemble(raster, frame);
         const AssembledBundle parts = assemble(*c.compute, frame);
-        if (c.compute == &computeTiled) EXPECT_GE(parts.stats.tiles, 9u);
+        if (c.compute == &computeTiled) {
+            EXPECT_GE(parts.stats.tiles, 9u);
+        }
         const BundleDifference diff = difference(reference, parts);
         const std::size_t countDiffers = diff.countDiffers, faceDiffers = diff.faceDiffers;
         const double worstDepth = diff.worstDepth;
@@ -352,6 +354,8 @@ TEST_F(BundleExactness, ComputeBuildMatchesTheRasterBuild) {
         EXPECT_LE(double(countDiffers), allowed) << "direction " << c.direction << " at " << c.resolution;
         EXPECT_LE(double(faceDiffers), allowed) << "direction " << c.direction << " at " << c.resolution;
         EXPECT_LE(worstDepth, 1e-5 * 2.0 * b.radius()) << "direction " << c.direction << " at " << c.resolution;
-        if (sameTieRule) EXPECT_EQ(parts.stats.fragments, reference.stats.fragments) << "direction " << c.direction;
+        if (sameTieRule) {
+            EXPECT_EQ(parts.stats.fragments, reference.stats.fragments) << "direction " << c.direction;
+        }
     }
 }
