@@ -105,4 +105,14 @@ void GBufferPass::record(VkCommandBuffer cmd, const shader::GpuCamera& camera, g
     }
 }
 
+std::vector<glm::vec3> GBufferPass::visiblePoints(const vk::Context& ctx) const {
+    std::vector<std::byte> raw = mAttachments[shader::kGBufferPosition].download(ctx, VK_IMAGE_LAYOUT_GENERAL);
+    const auto* p = reinterpret_cast<const glm::vec4*>(raw.data());
+    std::vector<glm::vec3> points;
+    for (std::size_t i = 0; i < std::size_t(mWidth) * mHeight; ++i) {
+        if (p[i].w > 0.0f) points.emplace_back(p[i]);
+    }
+    return points;
+}
+
 } // namespace bl::gpu

@@ -10,6 +10,8 @@
 #include "vk/Pipeline.h"
 
 #include <array>
+#include <glm/glm.hpp>
+#include <vector>
 #include <shared/Bindings.h>
 
 namespace bl::gpu {
@@ -28,6 +30,10 @@ public:
                 vk::GpuTimer* timer);
 
     const vk::GpuImage& attachment(std::uint32_t i) const { return mAttachments[i]; }
+    // The positions of the pixels that see a surface (the position attachment's w > 0), downloaded
+    // after the last record() completed: the points a bundle frame fitted to the camera-visible
+    // points must cover ([TO12s] B.1, bundleFrameForPoints).
+    std::vector<glm::vec3> visiblePoints(const vk::Context& ctx) const;
     VkBuffer cameraBuffer() const { return mCamera.get(); }
     std::uint32_t width() const { return mWidth; }
     std::uint32_t height() const { return mHeight; }

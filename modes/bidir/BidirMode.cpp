@@ -4,6 +4,7 @@
 #include "bundle/BundleFrame.h"
 #include "gpu/CameraPass.h"
 #include "gpu/ShadowCubePass.h"
+#include "modes/bidir/ReflectiveShadowMap.h"
 #include "modes/bidir/VplSampler.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <cstring>
 #include <modes/bidir/BidirShared.h>
+#include <modes/bidir/Rsm.h>
 #include <modes/bidir/Suppression.h>
 #include <modes/bidir/evaluate.comp.spv.h>
 
@@ -64,8 +66,16 @@ std::vector<ParamSpec> BidirMode::parameters() {
          "glossy artifact suppression ([TO12] section 5): none (unbiased), clamp (the lobe truncated at d/m) or "
          "roughness (its exponent lowered to that peak, Eq. 10-12)",
          0, 0, {"none", "clamp", "roughness"}},
+        {kVplSource, std::string("traced"), "",
+         "VPLs from reflective shadow cubes on the GPU (rsm, [TO12] 4.1) or light rays traced on the CPU (traced)", 0, 0,
+         {"rsm", "traced"}},
+        {kRsmResolution, std::int64_t{256}, "texels", "face side of the reflective shadow cubes ([TO12]: 256^2)", 4,
+         4096, {}},
         {kSuppressionNeighbours, 16.0, "samples", "m' of the suppression's neighbour count m = m' f cos / D ([TO12]: 16)",
          1e-3, 1e6, {}},
+        {kFit, std::string("scene"), "",
+         "bundle frames around the camera-visible points of the frame ([TO12s] B.1) or the scene's bounding sphere", 0,
+         0, {"visible", "scene"}},
         {kTwoBounceClamp, 0.0, "scene radius",
          "two-bounce term only: |x1 - x2| taken as at least this fraction of the scene's bounding radius (0: off, "
          "unbiased)",
@@ -85,6 +95,8 @@ struct BidirMode::Gpu {
     std::unique_ptr<BundlePool> pool;                // null for strategy = vpl
     std::unique_ptr<DirectionSampler> directions;
     std::unique_ptr<VplSampler> vpls;
+    std::unique_ptr<ReflectiveShadowMap> rsm; // vpl_source = rsm
+    vk::Buffer noRsm;                         // vpl_source = traced: the CDF block's header, N = 0
     vk::Buffer vplBuffer;
     vk::DescriptorSetLayout setLayout;
     vk::DescriptorPool descriptorPool;
@@ -96,6 +108,9 @@ struct BidirMode::Gpu {
     std::uint64_t nodesLast = 0;
     std::uint32_t rebuilds = 0;
     std::uint32_t invalidVpls = 0; // over all frames: light rays that escaped or met black surfaces
+    std::vector<glm::vec3> visiblePoints; // fit = visible: this frame's G-buffer points
+    double pixelGainSum = 0.0;            // sum over bundles of (sphere frame's pixel / this frame's pixel)
+    std::uint64_t bundlesBuilt = 0;
 };
 
 BidirMode::~BidirMode() = default;
@@ -115,7 +130,11 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
     const bool vpl = lights && (strategy != "bundle" || twoBounce);
     p.push_back({"VPL rays + VPL shadow cubes", vpl,
                  !lights ? "no point or spot light to start light paths"
-                 : vpl   ? pairs + " VPLs per frame (CPU rays, Embree), a " +
+                 : vpl   ? pairs + " VPLs per frame (" +
+                             (mSettings.getString(kVplSource) == "rsm"
+                                  ? "GPU, " + std::to_string(mSettings.getInt(kRsmResolution)) + "^2 reflective shadow cube per light"
+                                  : std::string("CPU rays, Embree")) +
+                             "), a " +
                              std::to_string(mSettings.getInt(kVplShadowResolution)) + "^2 cube each" +
                              (strategy == "bundle" ? " (for the two-bounce term only)" : "")
                          : "strategy = bundle with bounces = 1 uses no VPL"});
@@ -123,7 +142,8 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
     p.push_back({"bundle builds", bundles,
                  !lights  ? "no point or spot light: nothing for camera paths to reach"
                  : bundles ? pairs + " bundles of " + std::to_string(mSettings.getInt(kBundleResolution)) +
-                                 "^2 with hit payload per frame" +
+                                 "^2 with hit payload per frame, around the " +
+                                 (mSettings.getString(kFit) == "visible" ? "visible points" : "scene's sphere") +
                                  (strategy == "vpl" ? " (for the two-bounce term only)" : "")
                            : "strategy = vpl with bounces = 1 uses no bundle"});
     p.push_back({"evaluate", true, lights ? "direct + one-bounce (" + strategy + ")" +
@@ -169,6 +189,14 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     const auto vplCubes = std::max<std::uint32_t>(pairs, g->shadows->lightCount());
     g->vplShadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(vplSide), vplCubes);
     g->vpls = std::make_unique<VplSampler>(scene);
+    if (mSettings.getString(kVplSource) == "rsm" && g->shadows->lightCount() > 0) {
+        g->rsm = std::make_unique<ReflectiveShadowMap>(*ctx, *g->scene,
+                                                       static_cast<std::uint32_t>(mSettings.getInt(kRsmResolution)));
+    } else {
+        g->noRsm = vk::Buffer(*ctx, 4 * shader::kBidirRsmHeaderWords, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              vk::MemoryUse::Upload);
+        std::memset(g->noRsm.data(), 0, 4 * shader::kBidirRsmHeaderWords);
+    }
     g->vplBuffer = vk::Buffer(*ctx, sizeof(shader::BidirVpl) * pairs, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               vk::MemoryUse::Upload);
     g->bounds = scene.bounds();
@@ -202,8 +230,9 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
         device, {{shader::kBidirBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                  {shader::kBidirBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
                  {shader::kBidirBindingVplMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kBidirBindingVpls, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
-    g->descriptorPool = vk::DescriptorPool(device, 1, 2);
+                 {shader::kBidirBindingVpls, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kBidirBindingRsmCdf, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
+    g->descriptorPool = vk::DescriptorPool(device, 1, 3);
     g->set = g->descriptorPool.allocate(g->setLayout.get());
     vk::DescriptorWriter()
         .buffer(shader::kBidirBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
@@ -212,6 +241,7 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
         .image(shader::kBidirBindingVplMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->vplShadows->maps().view(),
                VK_IMAGE_LAYOUT_GENERAL)
         .buffer(shader::kBidirBindingVpls, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->vplBuffer.get())
+        .buffer(shader::kBidirBindingRsmCdf, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->rsm ? g->rsm->cdf() : g->noRsm.get())
         .update(device, g->set);
     VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
     g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BidirPush), cs);
@@ -228,8 +258,13 @@ void BidirMode::buildBundles(const IterationInfo& info) {
     std::vector<shader::BundleFrame> frames(slots);
     for (std::uint32_t k = 0; k < slots; ++k) {
         const BundleDirection dir = g.directions->sample(mIterations * slots + k);
-        frames[k] = bundleFrameForSphere(dir.omega, dir.rotation, g.bounds.center(), g.bounds.radius(), resolution);
+        frames[k] = g.visiblePoints.empty() ? bundleFrameForSphere(dir.omega, dir.rotation, g.bounds.center(),
+                                                                   g.bounds.radius(), resolution)
+                                            : bundleFrameForPoints(dir.omega, dir.rotation, g.visiblePoints,
+                                                                   g.bounds.center(), g.bounds.radius(), resolution);
+        g.pixelGainSum += 2.0 * g.bounds.radius() / (double(resolution) * frames[k].pixelSize);
     }
+    g.bundlesBuilt += slots;
     for (;;) {
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
@@ -270,21 +305,30 @@ void BidirMode::iterate(const IterationInfo& info) {
                                                               : DirectionSequence::Random,
                                                           static_cast<std::uint32_t>(info.seed));
     }
+    // The G-buffer first: fit = visible fits this frame's bundles to the points it sees.
+    const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time);
+    mContext->submitAndWait([&](VkCommandBuffer cmd) {
+        g.timer.begin(cmd);
+        g.camera->record(cmd, sample, &g.timer);
+    });
+    g.timer.collect();
     if (g.pool) {
+        if (mSettings.getString(kFit) == "visible") g.visiblePoints = g.camera->gbuffer().visiblePoints(*mContext);
         buildBundles(info);
     }
     const bool twoBounce = mSettings.getInt(kBounces) >= 2;
     const bool useVpls = lightCount > 0 && (strategy != shader::kBidirStrategyBundle || twoBounce);
     std::vector<shader::BidirVpl> vpls(pairs);
     if (useVpls) {
-        vpls = g.vpls->sample(std::uint64_t(mIterations) * pairs, pairs, static_cast<std::uint32_t>(info.seed), info.time,
+        vpls = g.rsm ? g.rsm->sample(std::uint64_t(mIterations) * pairs, pairs, static_cast<std::uint32_t>(info.seed),
+                                     info.time, kVplLiftFraction * g.bounds.radius(), &g.timer)
+                     : g.vpls->sample(std::uint64_t(mIterations) * pairs, pairs, static_cast<std::uint32_t>(info.seed), info.time,
                               kVplLiftFraction * g.bounds.radius());
         for (const shader::BidirVpl& v : vpls) g.invalidVpls += v.valid ? 0u : 1u;
     }
     std::memcpy(g.vplBuffer.data(), vpls.data(), sizeof(shader::BidirVpl) * pairs);
 
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
-    const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time);
     // Static scenes need the lights' shadow cubes once; animated ones whenever the time changes.
     const bool renderShadows =
         lightCount > 0 && (!mShadowTime || (g.scene->features().animated && *mShadowTime != info.time));
@@ -323,7 +367,6 @@ void BidirMode::iterate(const IterationInfo& info) {
                 g.vplShadows->record(cmd, vpls[k].cubeCentre, k, info.time, &g.timer);
             }
         }
-        g.camera->record(cmd, sample, &g.timer);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
         const std::uint32_t scope = g.timer.start(cmd, "evaluate");
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());
@@ -355,9 +398,18 @@ ImageSet BidirMode::resolve() {
     out.nonFiniteSamples = estimate.nonFiniteSamples;
     out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
     out.counters.emplace_back("invalid_vpls", double(g.invalidVpls));
+    if (g.rsm) {
+        out.counters.emplace_back("rsm_texel_mismatches", double(g.rsm->texelMismatches()));
+    }
     if (g.pool) {
         out.counters.emplace_back("bundle_nodes_last", double(g.nodesLast));
         out.counters.emplace_back("bundle_pool_rebuilds", double(g.rebuilds));
+        // bundle_resolution x the mean ratio of the sphere frame's pixel to the one used: the side of a
+        // sphere-fitted bundle with the same pixels (fit = scene: bundle_resolution).
+        out.counters.emplace_back("bundle_effective_resolution",
+                                  g.bundlesBuilt ? double(mSettings.getInt(kBundleResolution)) * g.pixelGainSum /
+                                                       double(g.bundlesBuilt)
+                                                 : 0.0);
     }
     return out;
 }

@@ -37,6 +37,18 @@
 //                                   and at x of two-bounce paths (Eq. 14); the lights' direct term
 //                                   is never suppressed.
 //   suppression_neighbours 16       m' ([TO12]: 16)
+//   vpl_source             traced   rsm: VPLs sampled on the GPU from a reflective shadow cube per
+//                                   light rendered every frame with a sub-texel jitter, p_e by the
+//                                   light's flux per texel (a spot light's profile included) and
+//                                   textured albedo (modes/bidir/ReflectiveShadowMap.h);
+//                                   traced: first hits of light rays on the CPU (Embree,
+//                                   VplSampler.h), p_e uniform on the sphere or in the spot cone.
+//   rsm_resolution         256      texels per face side of the reflective shadow cubes ([TO12]: 256)
+//   fit                    scene    bundle frames: around the points the G-buffer sees this frame
+//                                   ([TO12s] B.1, core bundleFrameForPoints; smaller pixels for the
+//                                   same bundle_resolution) or the scene's bounding sphere. A
+//                                   camera point outside a bundle drops the pixel's sample
+//                                   (counter dropped_samples; 0 by construction, tested).
 //
 // Not yet: interleaved sampling, reflective
 // shadow maps on the GPU (VPL rays are traced on the CPU), textured albedo at VPLs and bundle hits
@@ -65,6 +77,9 @@ public:
     static constexpr const char* kTwoBounceClamp = "two_bounce_clamp";
     static constexpr const char* kSuppression = "suppression";
     static constexpr const char* kSuppressionNeighbours = "suppression_neighbours";
+    static constexpr const char* kFit = "fit";
+    static constexpr const char* kVplSource = "vpl_source";
+    static constexpr const char* kRsmResolution = "rsm_resolution";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);

@@ -194,12 +194,7 @@ void SkylightMode::iterate(const IterationInfo& info) {
         // The visible points of this iteration's G-buffer: no margin covers jitter (at a silhouette
         // it moves a pixel's point onto another surface), so the frame is fitted to the points the
         // visibility pass will look up, every iteration.
-        g.visiblePoints.clear();
-        std::vector<std::byte> raw = g.gbuffer->attachment(shader::kGBufferPosition).download(*mContext, VK_IMAGE_LAYOUT_GENERAL);
-        const auto* p = reinterpret_cast<const glm::vec4*>(raw.data());
-        for (std::size_t i = 0; i < std::size_t(width) * height; ++i) {
-            if (p[i].w > 0.0f) g.visiblePoints.emplace_back(p[i]);
-        }
+        g.visiblePoints = g.gbuffer->visiblePoints(*mContext);
     }
     shader::BundleFrame frame =
         g.visiblePoints.empty()

@@ -19,6 +19,7 @@
 #include "shared/Lights.h"
 #include "shared/Octahedral.h"
 #include "modes/bidir/Suppression.h"
+#include "modes/bidir/RsmPdf.glsl"
 #define BL_ACCUM_LAYERS kBidirAccumLayers
 #include "gpu/CameraSet.glsl"
 #define BL_SHADOW_SET kBidirSet
@@ -33,6 +34,9 @@ layout(set = kBidirSet, binding = kBidirBindingVpls) readonly buffer VplBlock { 
 layout(push_constant) uniform PushBlock { BidirPush push; };
 
 const uint kBidirMapVpl = 1u; // blShadowVisibilityIn's map 1: the VPLs' cubes (map 0: the lights')
+// Set when x fell outside a bundle's frame: the pixel's sample is dropped (never added, counted by
+// the accumulator as dropped_samples) rather than biased by a missing bundle term.
+bool gOutsideBundle = false;
 
 // Directional sample densities (samples per steradian, [TO12] Eq. 15-17) of the one-bounce path
 // x0 -> y -> x whose middle vertex y has area densities pA1 (VPL strategy) and pA2 (bundle
@@ -71,7 +75,7 @@ vec3 lightAt(uint l, vec3 p, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float 
     if (cosine <= 0.0 || profile <= 0.0) {
         return vec3(0.0); // lit on the side wo does not see, or outside the spot cone
     }
-    float pLight = blBidirEmissionPdf(light, fromLight) / float(push.lightCount);
+    float pLight = blBidirLightPdf(l, light, fromLight) / float(push.lightCount);
     areaPdf = pLight * cosine / r2;
     float visibility = blShadowVisibility(kShadowCubeFaces * l, push.shadowResolution, d, n);
     if (visibility <= 0.0) {
@@ -162,7 +166,8 @@ vec3 bundleTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, ino
     ivec2 bundlePixel;
     float depth;
     if (!blBundlePixel(frame, x, bundlePixel, depth)) {
-        return vec3(0.0); // the frame covers the scene's bounding sphere: never for scene points
+        gOutsideBundle = true; // the frame covers the scene's sphere or this frame's visible points
+        return vec3(0.0);
     }
     BundleNodes nodes = BundleNodes(push.pool.nodes);
     uint head = blBundleHead(blBundlePoolHeads(push.pool, k), frame, bundlePixel);
@@ -250,6 +255,9 @@ void main() {
         if (bundles) {
             indirect += bundleTerm(k, x, n, m, albedo, wo, twoBounce);
         }
+    }
+    if (gOutsideBundle) {
+        return;
     }
     layers[kPathIndirect1] = indirect / float(max(push.pairs, 1u));
     layers[kPathIndirect2] = twoBounce / float(max(push.pairs, 1u));

@@ -31,6 +31,7 @@ constexpr std::uint32_t kSeeds = 4;    // independent runs per configuration
 constexpr std::uint32_t kFrames = 512; // frames per run of the single-strategy convergence tests
 constexpr std::uint32_t kMisFrames = kFrames / 2;
 constexpr std::uint32_t kReferenceSpp = 1024;
+constexpr const char* kRsm = "rsm_resolution=64"; // vpl_source = rsm runs: texels per cube face side
 const std::vector<std::string> kCommon = {"pairs_per_frame=8", "bundle_resolution=128", "shadow_resolution=256",
                                           "vpl_shadow_resolution=128"};
 
@@ -62,6 +63,14 @@ Scene cornellPoint() {
     Scene s = loadScene(bl::test::sourcePath("data/cornell-box/cornell-point.toml"));
     s.camera.resolution = {kResolution, kResolution};
     return s;
+}
+
+double counterOf(const ImageSet& out, const std::string& name) {
+    for (const auto& [key, value] : out.counters) {
+        if (key == name) return value;
+    }
+    ADD_FAILURE() << "no counter " << name;
+    return -1.0;
 }
 
 double luminance(const glm::vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
@@ -141,6 +150,14 @@ protected:
             }
             ImageSet out = mode->resolve();
             EXPECT_EQ(out.nonFiniteSamples, 0u);
+            // Every camera point falls inside every bundle (fit = scene or visible): a point
+            // outside one would drop its pixel's sample.
+            EXPECT_EQ(counterOf(out, "dropped_samples"), 0.0) << key;
+            // An RSM's VPL whose direction left its texel (the rasterizer's sample at the texel's
+            // edge; measured 2 of 4096 in one seed): rare, its density taken at its direction.
+            for (const auto& [name, value] : out.counters) {
+                if (name == "rsm_texel_mismatches") EXPECT_LE(value, 1e-3 * frames * 8) << key;
+            }
             r.final1.push_back(regionMeans(bl::test::layerOf(out, "indirect1")));
             r.final2.push_back(regionMeans(bl::test::layerOf(out, "indirect2")));
         }
@@ -150,7 +167,7 @@ protected:
     // The three one-bounce configurations; the single strategies run without the two-bounce
     // term (no bundles for vpl, no VPLs for bundle), MIS with it.
     const Runs& vplRuns() { return runs({"strategy=vpl", "bounces=1"}, kFrames); }
-    const Runs& bundleRuns() { return runs({"strategy=bundle", "bounces=1"}, kFrames); }
+    const Runs& bundleRuns() { return runs({"strategy=bundle", "bounces=1", "fit=visible"}, kFrames); }
     const Runs& misRuns() { return runs({"strategy=mis", "bounces=2"}, kMisFrames); }
 
     // Every region within `tolerance` (relative) of the reference, plus three standard errors of
@@ -196,6 +213,23 @@ TEST_F(Bidir, VplStrategyConvergesToReferenceIndirect1) {
 
 TEST_F(Bidir, BundleStrategyConvergesToReferenceIndirect1) {
     expectConverged(statsOf(bundleRuns().final1, reference1), reference1, kTolerance, "bundle");
+}
+
+// VPLs from reflective shadow cubes on the GPU (vpl_source = rsm, 64^2 per face, jittered every
+// frame): the VPL strategy's image mean converges to the reference's indirect1 (a wrong density,
+// e.g. without the texel's Jacobian J / A, moves it by tens of percent). Region by region it is not
+// proven yet: at 512 frames one seed's spike left the top-right region +28% +- 29% (the other 15
+// within -7.6%..+2.1%), see papers/tokuyoshi-ogaki-2012.md.
+TEST_F(Bidir, RsmVplStrategyImageMeanConvergesToReferenceIndirect1) {
+    const Runs& r = runs({"strategy=vpl", "bounces=1", "vpl_source=rsm", kRsm}, kComparisonFrames);
+    const RegionStats stats = statsOf(r.final1, reference1);
+    double variance = 0.0;
+    for (double e : stats.stderr_) variance += e * e;
+    const double mean = imageMean(stats.mean), ref = imageMean(reference1);
+    std::printf("rsm vpl: image mean %.5f reference %.5f (%+.2f%%) +- %.2f%% (%u frames)\n", mean, ref,
+                100.0 * (mean / ref - 1.0), 100.0 * std::sqrt(variance) / ref, kComparisonFrames);
+    EXPECT_LT(std::sqrt(variance), kImageTolerance * ref) << "too noisy to test";
+    EXPECT_NEAR(mean, ref, kImageTolerance * ref + 3.0 * std::sqrt(variance));
 }
 
 TEST_F(Bidir, MisConvergesToReferenceIndirect1) {
@@ -345,4 +379,26 @@ TEST_F(Bidir, SceneWithoutPointLightsRendersEmittersOnly) {
         EXPECT_GT(emitted, 0.0) << strategy;
         EXPECT_EQ(rest, 0.0) << strategy;
     }
+}
+
+// Bundle frames fitted to the points the G-buffer sees ([TO12s] B.1) drop no sample (every camera
+// point falls inside every bundle, jittered G-buffer included) and use smaller pixels than the
+// scene's sphere for the same bundle_resolution; the bundle strategy's convergence test runs with
+// this fit (the others with fit = scene, the default).
+TEST_F(Bidir, VisibleFitCoversEveryCameraPointWithSmallerPixels) {
+    double effective[2] = {0.0, 0.0};
+    const Scene s = cornellPoint();
+    for (const char* fit : {"scene", "visible"}) {
+        std::vector<std::string> settings = kCommon;
+        settings.insert(settings.end(), {"strategy=bundle", "bounces=1", std::string("fit=") + fit});
+        std::unique_ptr<Mode> mode = createMode("bidir", settings);
+        mode->setScene(s, &ctx());
+        for (std::uint32_t f = 0; f < 8; ++f) mode->iterate({f, 3, 0.0});
+        ImageSet out = mode->resolve();
+        EXPECT_EQ(counterOf(out, "dropped_samples"), 0.0) << fit;
+        effective[fit[0] == 'v'] = counterOf(out, "bundle_effective_resolution");
+    }
+    std::printf("effective bundle resolution: scene %.1f, visible %.1f\n", effective[0], effective[1]);
+    EXPECT_DOUBLE_EQ(effective[0], 128.0);
+    EXPECT_GT(effective[1], 128.0);
 }
