@@ -73,6 +73,17 @@ std::vector<ParamSpec> BidirMode::parameters() {
          4096, {}},
         {kSuppressionNeighbours, 16.0, "samples", "m' of the suppression's neighbour count m = m' f cos / D ([TO12]: 16)",
          1e-3, 1e6, {}},
+        {kInterleave, std::int64_t{1}, "sub-images per side",
+         "spatial interleaving: n x n sub-images, each with every n^2-th pair, gathered and blurred ([TO12s] A.1; 1: off)",
+         1, 16, {}},
+        {kInterleaveFilter, std::string("on"), "", "geometry-aware blur of the gathered indirect light", 0, 0,
+         {"on", "off"}},
+        {kTemporal, std::string("off"), "",
+         "temporal interleaving: 2x2 sub-pixel caches, round-robin, reverse reprojection ([TO12s] A.2)", 0, 0,
+         {"on", "off"}},
+        {kReprojection, std::string("auto"), "",
+         "temporal caches: auto warps into the caches' cameras only for an animated camera; always warps", 0, 0,
+         {"auto", "always"}},
         {kFit, std::string("scene"), "",
          "bundle frames around the camera-visible points of the frame ([TO12s] B.1) or the scene's bounding sphere", 0,
          0, {"visible", "scene"}},
@@ -156,6 +167,25 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
                  : suppression == "none" ? "suppression = none"
                  : !lights              ? "no indirect light without point/spot lights"
                                         : "no glossy material: every BRDF is Lambertian, nothing to suppress"});
+    const auto n = mSettings.getInt(kInterleave);
+    const bool filter = mSettings.getString(kInterleaveFilter) == "on";
+    p.push_back({"split + gather (interleave " + std::to_string(n) + ")", n > 1,
+                 n > 1 ? std::to_string(n * n) + " sub-images of every " + std::to_string(n) + "th pixel, " +
+                             std::to_string(mSettings.getInt(kPairs) / (n * n)) + "+ pairs each"
+                       : "interleave = 1"});
+    p.push_back({"geometry-aware filter", n > 1 && filter,
+                 n == 1 ? "interleave = 1: nothing to recombine"
+                 : filter ? std::to_string(n) + "x" + std::to_string(n) + " neighbourhood, normal and depth weights"
+                          : "interleave_filter = off"});
+    const bool temporal = mSettings.getString(kTemporal) == "on";
+    p.push_back({"temporal caches", temporal, temporal ? "4 sub-pixel caches, one rewritten per frame" : "temporal = off"});
+    const bool reproject = temporal && (scene.camera.animated() || mSettings.getString(kReprojection) == "always");
+    p.push_back({"reverse reprojection", reproject,
+                 !temporal   ? "temporal = off"
+                 : reproject ? (scene.camera.animated() ? "the camera is animated: each cache warped into its camera"
+                                                         : "reprojection = always")
+                             : "static camera: every cache's warp is the identity (moving meshes still fail the "
+                               "log-depth test), the image is the same"});
     if (f.emissiveMeshes || f.environment) {
         p.push_back({"area/environment light", false, "not lit by bidir yet: use reference or multibounce"});
     }
@@ -200,6 +230,7 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->vplBuffer = vk::Buffer(*ctx, sizeof(shader::BidirVpl) * pairs, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               vk::MemoryUse::Upload);
     g->bounds = scene.bounds();
+    setUpInterleaving(scene, width, height);
 
     if ((strategy != shader::kBidirStrategyVpl || twoBounce) && g->shadows->lightCount() > 0) {
         if (!ctx->geometryShader()) {
@@ -231,8 +262,10 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
                  {shader::kBidirBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
                  {shader::kBidirBindingVplMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
                  {shader::kBidirBindingVpls, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kBidirBindingRsmCdf, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
-    g->descriptorPool = vk::DescriptorPool(device, 1, 3);
+                 {shader::kBidirBindingRsmCdf, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kBidirBindingFrame, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
+                 {shader::kBidirBindingInterleave, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
+    g->descriptorPool = vk::DescriptorPool(device, 1, 4);
     g->set = g->descriptorPool.allocate(g->setLayout.get());
     vk::DescriptorWriter()
         .buffer(shader::kBidirBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
@@ -242,11 +275,35 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
                VK_IMAGE_LAYOUT_GENERAL)
         .buffer(shader::kBidirBindingVpls, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->vplBuffer.get())
         .buffer(shader::kBidirBindingRsmCdf, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->rsm ? g->rsm->cdf() : g->noRsm.get())
+        .image(shader::kBidirBindingFrame, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, mInterleave->frameView(),
+               VK_IMAGE_LAYOUT_GENERAL)
+        .buffer(shader::kBidirBindingInterleave, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, mInterleave->evaluateBuffer())
         .update(device, g->set);
     VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
     g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BidirPush), cs);
     g->pipeline = vk::makeComputePipeline(device, kSpv_modes_bidir_evaluate_comp, g->pipelineLayout.get());
+    mInterleave->preparePipeline(g->camera->setLayout());
     mGpu = std::move(g);
+}
+
+// Interleaving's options from the settings; its temporal caches are kept across setScene (the
+// frames of an animation) for the same scene, image size and options.
+void BidirMode::setUpInterleaving(const Scene& scene, std::uint32_t width, std::uint32_t height) {
+    InterleaveOptions o;
+    o.n = static_cast<std::uint32_t>(mSettings.getInt(kInterleave));
+    o.filter = mSettings.getString(kInterleaveFilter) == "on";
+    o.temporal = mSettings.getString(kTemporal) == "on";
+    o.reproject = scene.camera.animated() || mSettings.getString(kReprojection) == "always";
+    const auto pairs = static_cast<std::uint32_t>(mSettings.getInt(kPairs));
+    if (o.n * o.n > pairs) {
+        throw Error("bidir: interleave = " + std::to_string(o.n) + " needs pairs_per_frame >= " +
+                    std::to_string(o.n * o.n) + " (one pair per sub-image at least), got " + std::to_string(pairs));
+    }
+    if (!mInterleave || !mInterleave->matches(width, height, o) || mInterleaveScene != &scene) {
+        mInterleave = std::make_unique<Interleaving>(*mContext, width, height, o);
+    }
+    mInterleave->setReproject(o.reproject);
+    mInterleaveScene = &scene;
 }
 
 // Builds the K bundles of this frame into the pool; grows the pool and builds again when they did
@@ -257,7 +314,8 @@ void BidirMode::buildBundles(const IterationInfo& info) {
     const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
     std::vector<shader::BundleFrame> frames(slots);
     for (std::uint32_t k = 0; k < slots; ++k) {
-        const BundleDirection dir = g.directions->sample(mIterations * slots + k);
+        const BundleDirection dir =
+            g.directions->sample(static_cast<std::uint32_t>(mInterleave->sequenceBase(mIterations, slots) + k));
         frames[k] = g.visiblePoints.empty() ? bundleFrameForSphere(dir.omega, dir.rotation, g.bounds.center(),
                                                                    g.bounds.radius(), resolution)
                                             : bundleFrameForPoints(dir.omega, dir.rotation, g.visiblePoints,
@@ -306,7 +364,8 @@ void BidirMode::iterate(const IterationInfo& info) {
                                                           static_cast<std::uint32_t>(info.seed));
     }
     // The G-buffer first: fit = visible fits this frame's bundles to the points it sees.
-    const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time);
+    const gpu::CameraSample sample = mInterleave->cameraSample(g.camera->sample(mIterations, true, info.time),
+                                                               g.camera->width(), g.camera->height());
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         g.camera->record(cmd, sample, &g.timer);
@@ -320,9 +379,10 @@ void BidirMode::iterate(const IterationInfo& info) {
     const bool useVpls = lightCount > 0 && (strategy != shader::kBidirStrategyBundle || twoBounce);
     std::vector<shader::BidirVpl> vpls(pairs);
     if (useVpls) {
-        vpls = g.rsm ? g.rsm->sample(std::uint64_t(mIterations) * pairs, pairs, static_cast<std::uint32_t>(info.seed),
-                                     info.time, kVplLiftFraction * g.bounds.radius(), &g.timer)
-                     : g.vpls->sample(std::uint64_t(mIterations) * pairs, pairs, static_cast<std::uint32_t>(info.seed), info.time,
+        vpls = g.rsm ? g.rsm->sample(mInterleave->sequenceBase(mIterations, pairs), pairs,
+                                     static_cast<std::uint32_t>(info.seed), info.time,
+                                     kVplLiftFraction * g.bounds.radius(), &g.timer)
+                     : g.vpls->sample(mInterleave->sequenceBase(mIterations, pairs), pairs, static_cast<std::uint32_t>(info.seed), info.time,
                               kVplLiftFraction * g.bounds.radius());
         for (const shader::BidirVpl& v : vpls) g.invalidVpls += v.valid ? 0u : 1u;
     }
@@ -373,9 +433,11 @@ void BidirMode::iterate(const IterationInfo& info) {
         const VkDescriptorSet sets[] = {g.camera->set(), g.set};
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 2, sets, 0, nullptr);
         vkCmdPushConstants(cmd, g.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-        vkCmdDispatch(cmd, vk::groupCount(width, shader::kBidirGroupSize), vk::groupCount(height, shader::kBidirGroupSize),
-                      1);
+        if (mInterleave->active()) mInterleave->recordClear(cmd);
+        vkCmdDispatch(cmd, vk::groupCount(mInterleave->dispatchWidth(), shader::kBidirGroupSize),
+                      vk::groupCount(mInterleave->dispatchHeight(), shader::kBidirGroupSize), 1);
         g.timer.stop(cmd, scope);
+        if (mInterleave->active()) mInterleave->recordResolve(cmd, g.camera->set(), sample.camera, &g.timer);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
     });
@@ -383,6 +445,7 @@ void BidirMode::iterate(const IterationInfo& info) {
     if (renderShadows) {
         mShadowTime = info.time;
     }
+    if (mInterleave->active()) mInterleave->advance();
     ++mIterations;
 }
 

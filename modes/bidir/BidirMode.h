@@ -50,7 +50,17 @@
 //                                   camera point outside a bundle drops the pixel's sample
 //                                   (counter dropped_samples; 0 by construction, tested).
 //
-// Not yet: interleaved sampling, reflective
+//   interleave             1        n: n x n sub-images, each with every n^2-th pair, gathered and
+//                                   blurred over the n x n neighbourhood ([TO12s] A.1,
+//                                   modes/bidir/Interleaving.h); 1: off. pairs_per_frame >= n^2.
+//   interleave_filter      on       on | off: the geometry-aware blur after the gather (off: each
+//                                   pixel keeps its sub-image's K / n^2 pairs, unbiased)
+//   temporal               off      on | off: 2 x 2 sub-pixel caches, round-robin with periodic
+//                                   sample sets, reverse reprojection ([TO12s] A.2)
+//   reprojection           auto     auto | always: auto warps into the caches' cameras only when the
+//                                   camera is animated (a static camera's warp is the identity)
+//
+// Not yet: reflective
 // shadow maps on the GPU (VPL rays are traced on the CPU), textured albedo at VPLs and bundle hits
 // (their material's albedo is used), area emitters and environment light (not lit here).
 #pragma once
@@ -58,6 +68,7 @@
 #include "bundle/BundlePool.h"
 #include "bundle/DirectionSampler.h"
 #include "modes/Mode.h"
+#include "modes/bidir/Interleaving.h"
 
 #include <memory>
 #include <optional>
@@ -77,9 +88,13 @@ public:
     static constexpr const char* kTwoBounceClamp = "two_bounce_clamp";
     static constexpr const char* kSuppression = "suppression";
     static constexpr const char* kSuppressionNeighbours = "suppression_neighbours";
-    static constexpr const char* kFit = "fit";
     static constexpr const char* kVplSource = "vpl_source";
     static constexpr const char* kRsmResolution = "rsm_resolution";
+    static constexpr const char* kFit = "fit";
+    static constexpr const char* kInterleave = "interleave";
+    static constexpr const char* kInterleaveFilter = "interleave_filter";
+    static constexpr const char* kTemporal = "temporal";
+    static constexpr const char* kReprojection = "reprojection";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);
@@ -98,6 +113,7 @@ public:
 private:
     struct Gpu;
     void buildBundles(const IterationInfo& info);
+    void setUpInterleaving(const Scene& scene, std::uint32_t width, std::uint32_t height);
 
     Settings mSettings;
     const Scene* mScene = nullptr;
@@ -105,6 +121,8 @@ private:
     std::unique_ptr<Gpu> mGpu;
     std::uint32_t mIterations = 0;
     std::optional<double> mShadowTime; // scene time of the lights' shadow cubes
+    std::unique_ptr<Interleaving> mInterleave; // kept across setScene: the temporal caches
+    const Scene* mInterleaveScene = nullptr;
 };
 
 } // namespace bl

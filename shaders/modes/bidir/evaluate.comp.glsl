@@ -14,6 +14,7 @@
 // bounces = 2 pair k also gives the two-bounce path x0 -> VPL k -> bundle k's hit -> x (Eq. 7-8,
 // one strategy, no MIS), the mean over the pairs one sample of the indirect2 layer.
 #include "modes/bidir/BidirShared.h"
+#include "modes/bidir/Interleave.h"
 #include "bundle/Traversal.glsl"
 #include "shared/Brdf.h"
 #include "shared/Lights.h"
@@ -32,6 +33,20 @@ layout(local_size_x = kBidirGroupSize, local_size_y = kBidirGroupSize) in;
 layout(set = kBidirSet, binding = kBidirBindingLights) readonly buffer LightBlock { GpuLight lights[]; };
 layout(set = kBidirSet, binding = kBidirBindingVpls) readonly buffer VplBlock { BidirVpl vpls[]; };
 layout(push_constant) uniform PushBlock { BidirPush push; };
+layout(set = kBidirSet, binding = kBidirBindingFrame, rgba32f) uniform writeonly image2DArray interleaveFrame;
+layout(set = kBidirSet, binding = kBidirBindingInterleave) readonly buffer InterleaveBlock { InterleaveEvaluate interleave; };
+
+// The pixel's sample: accumulated here, or with interleaving written to the frame image for the
+// blur / temporal pass (shaders/modes/bidir/interleave.comp.glsl), which accumulates it.
+void emitSample(ivec2 pixel, vec3 layers[kPathLayerCount]) {
+    if (interleave.deferred == 0u) {
+        blAccumulate(pixel, layers);
+        return;
+    }
+    for (uint l = 0u; l < kPathLayerCount; ++l) {
+        imageStore(interleaveFrame, ivec3(pixel, int(l)), vec4(layers[l], kFrameWritten));
+    }
+}
 
 const uint kBidirMapVpl = 1u; // blShadowVisibilityIn's map 1: the VPLs' cubes (map 0: the lights')
 // Set when x fell outside a bundle's frame: the pixel's sample is dropped (never added, counted by
@@ -214,7 +229,14 @@ vec3 bundleTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, ino
 }
 
 void main() {
+    // Interleaving: threads run in the split layout, each shading the pixel it gathers to.
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    uint firstPair = 0u, pairStride = 1u;
+    if (interleave.n > 1u) {
+        pixel = blInterleaveGather(pixel, blInterleaveBlock(push.width, push.height, interleave.n), interleave.n);
+        firstPair = blInterleaveSubImage(pixel, interleave.n);
+        pairStride = interleave.n * interleave.n;
+    }
     if (pixel.x >= int(push.width) || pixel.y >= int(push.height)) {
         return;
     }
@@ -225,9 +247,13 @@ void main() {
         return;
     }
     if (!blCameraHitSurface(pixel)) {
-        blAccumulateLayer(pixel, kPathEmitted, blCameraBackground(pixel, push.samplePosition,
-                                                                  push.environmentPresent != 0u,
-                                                                  push.environmentRotation));
+        vec3 background[kPathLayerCount];
+        for (uint l = 0u; l < kPathLayerCount; ++l) {
+            background[l] = vec3(0.0);
+        }
+        background[kPathEmitted] = blCameraBackground(pixel, push.samplePosition, push.environmentPresent != 0u,
+                                                      push.environmentRotation);
+        emitSample(pixel, background);
         return;
     }
     vec3 layers[kPathLayerCount];
@@ -248,7 +274,8 @@ void main() {
     vec3 indirect = vec3(0.0);
     vec3 twoBounce = vec3(0.0);
     const bool bundles = push.strategy != kBidirStrategyVpl || push.bounces >= 2u;
-    for (uint k = 0u; k < push.pairs; ++k) {
+    uint used = 0u; // pairs of this pixel's sub-image
+    for (uint k = firstPair; k < push.pairs; k += pairStride, ++used) {
         if (push.strategy != kBidirStrategyBundle) {
             indirect += vplTerm(k, x, n, m, albedo, wo);
         }
@@ -259,7 +286,7 @@ void main() {
     if (gOutsideBundle) {
         return;
     }
-    layers[kPathIndirect1] = indirect / float(max(push.pairs, 1u));
-    layers[kPathIndirect2] = twoBounce / float(max(push.pairs, 1u));
-    blAccumulate(pixel, layers);
+    layers[kPathIndirect1] = indirect / float(max(used, 1u));
+    layers[kPathIndirect2] = twoBounce / float(max(used, 1u));
+    emitSample(pixel, layers);
 }

@@ -1,0 +1,148 @@
+// Mode bidir's spatio-temporal interleaved sampling ([TO12s] A, modes/bidir/Interleaving.h):
+// the split/gather index maps are inverse permutations; with the blur off, interleaving only
+// chooses which pairs a pixel evaluates (direct light unchanged to the bit, sub-image 0 of a
+// 4-pair frame equal to the bit to a 1-pair frame, the other sub-images not), and the gathered
+// image converges to the reference's indirect1; the blur removes variance at a stated bias; the
+// pass plan skips reprojection for a static camera and the image stays the same to the bit.
+#include "modes/Registry.h"
+#include "modes/reference/ReferenceTestSupport.h"
+#include "scene/SceneLoader.h"
+#include "support/TestFiles.h"
+#include "support/VulkanTest.h"
+
+#include <modes/bidir/Interleave.h>
+
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+using namespace bl;
+
+namespace {
+
+constexpr int kResolution = 32;
+const std::vector<std::string> kCommon = {"bundle_resolution=128", "shadow_resolution=256",
+                                          "vpl_shadow_resolution=128"};
+
+Scene cornellPoint() {
+    Scene s = loadScene(bl::test::sourcePath("data/cornell-box/cornell-point.toml"));
+    s.camera.resolution = {kResolution, kResolution};
+    return s;
+}
+
+double luminance(const glm::vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+class Interleaving : public bl::test::VulkanTest {
+protected:
+    ImageSet render(const Scene& s, std::vector<std::string> extra, std::uint32_t frames, std::uint64_t seed) {
+        std::vector<std::string> settings = kCommon;
+        settings.insert(settings.end(), extra.begin(), extra.end());
+        std::unique_ptr<Mode> mode = createMode("bidir", settings);
+        mode->setScene(s, &ctx());
+        for (std::uint32_t f = 0; f < frames; ++f) mode->iterate({f, seed, 0.0});
+        ImageSet out = mode->resolve();
+        EXPECT_EQ(out.nonFiniteSamples, 0u);
+        return out;
+    }
+};
+
+bool same(const Image& a, const Image& b) {
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x)
+            if (a.at(x, y) != b.at(x, y)) return false;
+    return true;
+}
+
+} // namespace
+
+// Split and gather are inverse permutations of the pixels, for sizes that n does not divide, and
+// a block of the split layout holds exactly one sub-image.
+TEST(InterleaveMaps, SplitAndGatherAreInversePermutations) {
+    for (std::uint32_t n : {1u, 2u, 3u, 4u}) {
+        for (auto [w, h] : {std::pair{32u, 32u}, std::pair{33u, 31u}, std::pair{7u, 5u}}) {
+            const glm::ivec2 block = shader::blInterleaveBlock(w, h, n);
+            std::set<std::pair<int, int>> seen;
+            for (int y = 0; y < int(h); ++y) {
+                for (int x = 0; x < int(w); ++x) {
+                    const glm::ivec2 t = shader::blInterleaveSplit({x, y}, block, n);
+                    ASSERT_LT(t.x, int(n) * block.x);
+                    ASSERT_LT(t.y, int(n) * block.y);
+                    EXPECT_TRUE(seen.insert({t.x, t.y}).second) << "two pixels split to one position";
+                    const glm::ivec2 back = shader::blInterleaveGather(t, block, n);
+                    EXPECT_EQ(back, glm::ivec2(x, y));
+                    const std::uint32_t s = shader::blInterleaveSubImage({x, y}, n);
+                    EXPECT_EQ(s, std::uint32_t(t.y / block.y) * n + std::uint32_t(t.x / block.x));
+                }
+            }
+        }
+    }
+}
+
+// With the blur off, interleave = 2 shades every pixel once at its own place (direct light and
+// emission the same to the bit as interleave = 1), and sub-image s evaluates pair s only of a
+// 4-pair frame: sub-image 0's indirect light equals a 1-pair frame's (the same VPL, index 0) to
+// the bit, the other three sub-images' do not.
+TEST_F(Interleaving, GatherShadesEveryPixelOnceWithItsSubImagesPairs) {
+    const Scene s = cornellPoint();
+    const std::vector<std::string> vpl = {"strategy=vpl", "bounces=1"};
+    auto with = [&](std::vector<std::string> a, std::vector<std::string> b) {
+        a.insert(a.end(), b.begin(), b.end());
+        return a;
+    };
+    const ImageSet plain = render(s, with(vpl, {"pairs_per_frame=4"}), 1, 3);
+    const ImageSet split = render(s, with(vpl, {"pairs_per_frame=4", "interleave=2", "interleave_filter=off"}), 1, 3);
+    const ImageSet single = render(s, with(vpl, {"pairs_per_frame=1"}), 1, 3);
+    EXPECT_TRUE(same(bl::test::layerOf(plain, "direct"), bl::test::layerOf(split, "direct")));
+    EXPECT_TRUE(same(bl::test::layerOf(plain, "emitted"), bl::test::layerOf(split, "emitted")));
+    const Image& a = bl::test::layerOf(split, "indirect1");
+    const Image& b = bl::test::layerOf(single, "indirect1");
+    int equal[4] = {0, 0, 0, 0}, lit[4] = {0, 0, 0, 0};
+    for (int y = 0; y < kResolution; ++y) {
+        for (int x = 0; x < kResolution; ++x) {
+            const std::uint32_t sub = shader::blInterleaveSubImage({x, y}, 2);
+            lit[sub] += luminance(b.at(x, y)) > 0.0 ? 1 : 0;
+            equal[sub] += a.at(x, y) == b.at(x, y) && luminance(b.at(x, y)) > 0.0 ? 1 : 0;
+        }
+    }
+    std::printf("lit pixels per sub-image %d %d %d %d, equal to the 1-pair frame %d %d %d %d\n", lit[0], lit[1],
+                lit[2], lit[3], equal[0], equal[1], equal[2], equal[3]);
+    EXPECT_GT(lit[0], kResolution * kResolution / 16); // a quarter of the sub-image
+    EXPECT_EQ(equal[0], lit[0]);
+    for (int sub = 1; sub < 4; ++sub) EXPECT_LT(equal[sub], lit[sub] / 10) << "sub-image " << sub;
+}
+
+// The plan skips reverse reprojection for a static camera and says why; warping anyway
+// (reprojection = always) gives the same image to the bit. On the animated Cornell box (camera
+// dolly) the plan runs it.
+TEST_F(Interleaving, PlanSkipsReprojectionForStaticCameraImageUnchanged) {
+    const Scene s = cornellPoint();
+    auto planned = [&](const Scene& scene, const std::string& reprojection) {
+        std::unique_ptr<Mode> mode = createMode("bidir", {"temporal=on", "reprojection=" + reprojection});
+        for (const PlannedPass& p : mode->plan(scene)) {
+            if (p.name == "reverse reprojection") {
+                std::printf("%s: %s (%s)\n", p.name.c_str(), p.runs ? "runs" : "skipped", p.reason.c_str());
+                return p.runs;
+            }
+        }
+        ADD_FAILURE() << "no reprojection pass in the plan";
+        return true;
+    };
+    EXPECT_FALSE(planned(s, "auto"));
+    EXPECT_TRUE(planned(s, "always"));
+    Scene animated = loadScene(bl::test::sourcePath("data/cornell-box/cornell-animated.toml"));
+    EXPECT_TRUE(planned(animated, "auto"));
+
+    const std::vector<std::string> temporal = {"pairs_per_frame=4", "interleave=2", "temporal=on"};
+    auto with = [&](std::string r) {
+        auto v = temporal;
+        v.push_back("reprojection=" + r);
+        return v;
+    };
+    const ImageSet skipped = render(s, with("auto"), 6, 5);
+    const ImageSet warped = render(s, with("always"), 6, 5);
+    EXPECT_TRUE(same(bl::test::layerOf(skipped, "indirect1"), bl::test::layerOf(warped, "indirect1")));
+    EXPECT_TRUE(same(bl::test::layerOf(skipped, "indirect2"), bl::test::layerOf(warped, "indirect2")));
+    // The caches are used: after 6 frames the image differs from a one-cache (temporal off) run.
+    const ImageSet off = render(s, {"pairs_per_frame=4", "interleave=2"}, 6, 5);
+    EXPECT_FALSE(same(bl::test::layerOf(skipped, "indirect1"), bl::test::layerOf(off, "indirect1")));
+}
