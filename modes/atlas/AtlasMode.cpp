@@ -14,12 +14,15 @@
 #include "modes/atlas/TexelSamples.h"
 #include "sampling/EnvironmentLight.h"
 #include "scene/Scene.h"
+#include "scene/ShaderConversions.h"
 #include "vk/Commands.h"
 #include "vk/Descriptors.h"
 
 #include <modes/atlas/AtlasShared.h>
 #include <modes/atlas/direct.comp.spv.h>
 #include <modes/atlas/exchange.comp.spv.h>
+#include <modes/atlas/gather.comp.spv.h>
+#include <modes/atlas/highlight.comp.spv.h>
 #include <modes/atlas/shade.comp.spv.h>
 #include <modes/atlas/update.comp.spv.h>
 #include <shared/Random.h>
@@ -39,9 +42,9 @@ constexpr std::uint64_t kInitialNodesPerPixel = 4;
 // numbers (DirectionSampler) by distinct hash keys.
 constexpr std::uint32_t kGridKeyX = 0x68e31da4u;
 constexpr std::uint32_t kGridKeyY = 0xb5297a4du;
-// Device bytes per texel: texel table (32), sender (2 x 16), received (2 x 16), sums (2 x 32),
-// direct (2 x 16), settled (2 x 16), chart (4).
-constexpr VkDeviceSize kBytesPerTexel = 32 + 32 + 32 + 64 + 32 + 32 + 4;
+// Device bytes per texel: texel table (32), sender (2 x 16), received and glossy transfer (2 x 32),
+// sums (2 x 32), direct (2 x 16), settled (2 x 16), chart (4).
+constexpr VkDeviceSize kBytesPerTexel = 32 + 32 + 64 + 64 + 32 + 32 + 4;
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                         VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
@@ -102,6 +105,10 @@ std::vector<ParamSpec> AtlasMode::parameters() {
          {}},
         {kLightSamples, std::int64_t{2}, "per side",
          "n: an n x n grid of sample points per texel averages point/spot light over the texel's surface", 1, 16, {}},
+        {kGlossy, std::string("transfer"), "",
+         "glossy lobes: transfer = glossy transfer atlas + final gather toward the eye ([HHGM10] 5.3-5.4); gather = "
+         "toward the eye only (no glossy bounce between surfaces); off = their albedo only (diffuse)",
+         0, 0, {"transfer", "gather", "off"}},
         {kMemoryCap, std::int64_t{0}, "MiB",
          "node storage limit of the bundle pool (0: half the largest device-local heap); a direction that needs more is "
          "refused",
@@ -127,8 +134,12 @@ struct AtlasMode::Gpu {
     vk::Buffer texels, triangles, charts, sender, received, sums, directRadiance, settled;
     vk::Buffer samples, firstSample; // TexelSamples of the direct pass (with lights only)
     vk::Buffer direction; // AtlasDirection, host-written before each direction's submission
-    vk::PipelineLayout exchangeLayout, updateLayout, shadeLayout, directLayout;
-    vk::Pipeline exchange, update, shade, direct;
+    // Glossy materials (interleaved transfer only): the glossy transfer atlas rides in `received`;
+    // the final gather's per-pixel sums and the view sample's point-light highlight per pixel.
+    bool glossy = false, glossyTransfer = false;
+    vk::Buffer materials, gathered, highlight;
+    vk::PipelineLayout exchangeLayout, updateLayout, shadeLayout, directLayout, gatherLayout, highlightLayout;
+    vk::Pipeline exchange, update, shade, direct, gather, highlightPipeline;
     vk::DescriptorSetLayout viewSetLayout, directSetLayout;
     vk::DescriptorPool descriptorPool;
     VkDescriptorSet viewSet = VK_NULL_HANDLE, directSet = VK_NULL_HANDLE;
@@ -169,10 +180,28 @@ std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {
     } else {
         p.push_back({"shadow maps", false, "no point or spot lights"});
     }
-    if (f.glossy) {
-        p.push_back({"glossy transfer", false, "glossy lobes are NOT transported yet: their albedo only (diffuse)"});
-    } else {
+    const std::string glossy = mSettings.getString(kGlossy);
+    if (!f.glossy) {
         p.push_back({"glossy transfer", false, "no glossy materials"});
+        p.push_back({"glossy gather", false, "no glossy materials"});
+    } else if (glossy == "off" || mSettings.getString(kTransfer) == "bounce") {
+        const std::string why = glossy == "off" ? "glossy = off" : "transfer = bounce (a pass's sender is fixed)";
+        p.push_back({"glossy transfer", false, why + ": the lobes are NOT transported (their albedo only)"});
+        p.push_back({"glossy gather", false, why + ": no glossy reflection toward the eye"});
+    } else {
+        const bool lights = f.shadowCastingLights() > 0;
+        if (glossy == "transfer") {
+            p.push_back({"glossy transfer", true,
+                         std::string("glossy texels store what their lobe reflects toward the next direction (in the "
+                                     "receiver), the next direction sends it") +
+                             (lights ? "; point/spot lights' lobes per texel sample too" : "")});
+        } else {
+            p.push_back({"glossy transfer", false, "glossy = gather: no glossy bounce between surfaces"});
+        }
+        p.push_back({"glossy gather", true,
+                     std::string("per direction a jittered camera G-buffer; each glossy pixel's bundle neighbour "
+                                 "sends through the lobe toward the eye") +
+                         (lights ? "; point/spot lights' highlight per view sample" : "")});
     }
     p.push_back({"view", true, std::to_string(mSettings.getInt(kViewSamples)) +
                                    " jittered camera samples per pixel of the atlas at resolve (G-buffer + atlas uv raster)"});
@@ -257,7 +286,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     options.memoryCapBytes = static_cast<std::uint64_t>(mSettings.getInt(kMemoryCap)) << 20;
     g->pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
     // Build, sort, exchange, update, and per view sample G-buffer, view raster, shade.
-    constexpr std::uint32_t kScopes = 16;
+    constexpr std::uint32_t kScopes = 24;
     g->timer = vk::GpuTimer(*ctx, kScopes);
 
     const std::size_t texels = g->texelCount;
@@ -270,7 +299,9 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
         sender[shader::kAtlasSides * t + shader::kAtlasFront] = glm::vec4(g->tables.texels[t].emission, 0.0f);
     }
     g->sender = vk::makeBuffer(*ctx, std::span<const glm::vec4>(sender), kStorage);
-    g->received = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(shader::kAtlasSides * texels)),
+    g->received = vk::makeBuffer(*ctx,
+                                 std::span<const glm::vec4>(std::vector<glm::vec4>(
+                                     shader::kAtlasSides * texels * shader::kAtlasReceivedWords / 4)),
                                  kStorage);
     g->directRadiance = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(shader::kAtlasSides * texels)),
                                kStorage);
@@ -306,6 +337,26 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
         g->directLayout = vk::makePipelineLayout(device, directLayouts, sizeof(shader::AtlasDirectPush), cs);
         g->direct = vk::makeComputePipeline(device, kSpv_modes_atlas_direct_comp, g->directLayout.get());
     }
+    std::vector<shader::GpuMaterial> materials;
+    for (const Material& m : scene.materials) materials.push_back(toGpuMaterial(m));
+    if (materials.empty()) materials.emplace_back();
+    g->materials = vk::makeBuffer(*ctx, std::span<const shader::GpuMaterial>(materials), kStorage);
+    g->glossy = scene.features().glossy && !bounce() && mSettings.getString(kGlossy) != "off";
+    g->glossyTransfer = g->glossy && mSettings.getString(kGlossy) == "transfer";
+    if (g->glossy) {
+        const std::vector<glm::vec4> pixels(std::size_t(width) * height);
+        g->gathered = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
+        VkDescriptorSetLayout cameraOnly[] = {g->camera->setLayout()};
+        g->gatherLayout = vk::makePipelineLayout(device, cameraOnly, sizeof(shader::AtlasGatherPush), cs);
+        g->gather = vk::makeComputePipeline(device, kSpv_modes_atlas_gather_comp, g->gatherLayout.get());
+        if (g->shadows) {
+            g->highlight = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
+            VkDescriptorSetLayout lightLayouts[] = {g->camera->setLayout(), g->directSetLayout.get()};
+            g->highlightLayout = vk::makePipelineLayout(device, lightLayouts, sizeof(shader::AtlasHighlightPush), cs);
+            g->highlightPipeline =
+                vk::makeComputePipeline(device, kSpv_modes_atlas_highlight_comp, g->highlightLayout.get());
+        }
+    }
     vk::DescriptorWriter()
         .image(shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->view->image().view(), VK_IMAGE_LAYOUT_GENERAL)
         .update(device, g->viewSet);
@@ -339,7 +390,11 @@ void AtlasMode::buildBundle(const IterationInfo& info) {
     const bool environment = g.environment.present() && (!bounce() || mPass == 1);
     params.environmentForward = environment ? g.environment.radiance(frame.direction) : glm::vec3(0.0f);
     params.environmentBackward = environment ? g.environment.radiance(-frame.direction) : glm::vec3(0.0f);
-    params.weight = frame.pixelSize * frame.pixelSize / (shader::kPi * g.directions->hemispherePdf(frame.direction));
+    const float density = g.directions->hemispherePdf(frame.direction);
+    params.weight = frame.pixelSize * frame.pixelSize / (shader::kPi * density);
+    params.inverseDensity = 1.0f / density;
+    params.glossy = g.glossyTransfer ? 1u : 0u;
+    params.next = g.directions->sample(mIterations + 1).omega;
     std::memcpy(g.direction.data(), &params, sizeof(params));
 
     for (;;) {
@@ -368,6 +423,19 @@ void AtlasMode::buildBundle(const IterationInfo& info) {
     }
 }
 
+// What both uses of the direct pass share: the texels' sample points and the lights.
+shader::AtlasDirectPush AtlasMode::directPush() const {
+    const Gpu& g = *mGpu;
+    shader::AtlasDirectPush push{};
+    push.samples = addressOf(*mContext, g.samples);
+    push.first = addressOf(*mContext, g.firstSample);
+    push.texels = addressOf(*mContext, g.texels);
+    push.texelCount = g.texelCount;
+    push.lightCount = g.shadows->lightCount();
+    push.shadowResolution = g.shadows->resolution();
+    return push;
+}
+
 void AtlasMode::lightDirect(double time) {
     Gpu& g = *mGpu;
     if (!g.shadows) {
@@ -378,15 +446,9 @@ void AtlasMode::lightDirect(double time) {
     g.samples = vk::makeBuffer(*mContext, std::span<const shader::AtlasSample>(samples.samples), kStorage);
     g.firstSample = vk::makeBuffer(*mContext, std::span<const std::uint32_t>(samples.first), kStorage);
     g.scene->setLightTime(*mContext, time); // keyframed lights where they are at this time
-    shader::AtlasDirectPush push{};
-    push.samples = addressOf(*mContext, g.samples);
-    push.first = addressOf(*mContext, g.firstSample);
-    push.texels = addressOf(*mContext, g.texels);
+    shader::AtlasDirectPush push = directPush();
     push.direct = addressOf(*mContext, g.directRadiance);
     push.sender = addressOf(*mContext, g.sender);
-    push.texelCount = g.texelCount;
-    push.lightCount = g.shadows->lightCount();
-    push.shadowResolution = g.shadows->resolution();
     push.directIntoSender = bounce() ? 0u : 1u;
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
@@ -441,6 +503,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
     exchange.sender = addressOf(*mContext, g.sender);
     exchange.received = addressOf(*mContext, g.received);
     exchange.direction = addressOf(*mContext, g.direction);
+    exchange.materials = addressOf(*mContext, g.materials);
     exchange.width = static_cast<std::uint32_t>(g.atlas.maps.width);
     exchange.height = static_cast<std::uint32_t>(g.atlas.maps.height);
     exchange.pages = static_cast<std::uint32_t>(g.atlas.maps.pages);
@@ -472,6 +535,13 @@ void AtlasMode::iterate(const IterationInfo& info) {
         vkCmdPushConstants(cmd, g.exchangeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(exchange), &exchange);
         vkCmdDispatch(cmd, vk::groupCount(bundlePixels, shader::kAtlasGroupSize), 1, 1);
         g.timer.stop(cmd, scope);
+        if (g.glossyTransfer && g.shadows) {
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+            recordGlossyLights(cmd);
+        }
+        if (g.glossy) {
+            recordGather(cmd, weight);
+        }
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
         scope = g.timer.start(cmd, "update");
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.update.get());
@@ -490,6 +560,75 @@ void AtlasMode::iterate(const IterationInfo& info) {
         mTotalWeight = 0.0;
     }
     ++mIterations;
+}
+
+// Point/spot lights into the glossy transfer atlas for the next direction (direct.comp.glsl's
+// glossy pass), after the exchange's atomics.
+void AtlasMode::recordGlossyLights(VkCommandBuffer cmd) {
+    Gpu& g = *mGpu;
+    shader::AtlasDirectPush push = directPush();
+    push.received = addressOf(*mContext, g.received);
+    push.next = g.directions->sample(mIterations + 1).omega;
+    push.glossy = 1u;
+    push.materials = addressOf(*mContext, g.materials);
+    const std::uint32_t scope = g.timer.start(cmd, "glossy lights");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.direct.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.directLayout.get(), 0, 1, &g.directSet, 0, nullptr);
+    vkCmdPushConstants(cmd, g.directLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, vk::groupCount(g.texelCount, shader::kAtlasGroupSize), 1, 1);
+    g.timer.stop(cmd, scope);
+}
+
+// The final glossy gather of the direction just exchanged (its sender still unchanged): the
+// G-buffer of a jittered camera sample (a new sub-pixel position per direction), then one
+// invocation per pixel.
+void AtlasMode::recordGather(VkCommandBuffer cmd, double weight) {
+    Gpu& g = *mGpu;
+    const gpu::CameraSample sample = g.camera->sample(mIterations, true, mTime);
+    g.camera->record(cmd, sample, &g.timer);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    shader::AtlasGatherPush push{};
+    push.pool = g.pool->view();
+    push.sender = addressOf(*mContext, g.sender);
+    push.triangles = addressOf(*mContext, g.triangles);
+    push.gathered = addressOf(*mContext, g.gathered);
+    push.direction = addressOf(*mContext, g.direction);
+    push.width = g.camera->width();
+    push.height = g.camera->height();
+    push.atlasWidth = static_cast<std::uint32_t>(g.atlas.maps.width);
+    push.atlasHeight = static_cast<std::uint32_t>(g.atlas.maps.height);
+    push.weight = float(weight);
+    push.clear = mTotalWeight == 0.0 ? 1u : 0u;
+    const std::uint32_t scope = g.timer.start(cmd, "glossy gather");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.gather.get());
+    const VkDescriptorSet set = g.camera->set();
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.gatherLayout.get(), 0, 1, &set, 0, nullptr);
+    vkCmdPushConstants(cmd, g.gatherLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, vk::groupCount(push.width, shader::kAtlasViewGroupSize),
+                  vk::groupCount(push.height, shader::kAtlasViewGroupSize), 1);
+    g.timer.stop(cmd, scope);
+}
+
+// Point/spot lights' glossy highlight toward the eye for the view sample whose G-buffer was just
+// recorded.
+void AtlasMode::recordHighlight(VkCommandBuffer cmd) {
+    Gpu& g = *mGpu;
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    shader::AtlasHighlightPush push{};
+    push.highlight = addressOf(*mContext, g.highlight);
+    push.width = g.camera->width();
+    push.height = g.camera->height();
+    push.lightCount = g.shadows->lightCount();
+    push.shadowResolution = g.shadows->resolution();
+    const std::uint32_t scope = g.timer.start(cmd, "glossy highlight");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.highlightPipeline.get());
+    const VkDescriptorSet sets[] = {g.camera->set(), g.directSet};
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.highlightLayout.get(), 0, 2, sets, 0, nullptr);
+    vkCmdPushConstants(cmd, g.highlightLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, vk::groupCount(push.width, shader::kAtlasViewGroupSize),
+                  vk::groupCount(push.height, shader::kAtlasViewGroupSize), 1);
+    g.timer.stop(cmd, scope);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }
 
 ImageSet AtlasMode::resolve() {
@@ -515,6 +654,8 @@ ImageSet AtlasMode::resolve() {
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
     push.environmentRotation = g.scene->environmentRotation();
     push.direct = addressOf(*mContext, g.directRadiance);
+    push.gathered = g.glossy ? addressOf(*mContext, g.gathered) : glm::uvec2(0u);
+    push.highlight = g.highlightPipeline ? addressOf(*mContext, g.highlight) : glm::uvec2(0u);
     for (std::uint32_t k = 0; k < samples; ++k) {
         const gpu::CameraSample sample = g.camera->sample(k, samples > 1, mTime);
         push.samplePosition = sample.samplePosition;
@@ -522,6 +663,9 @@ ImageSet AtlasMode::resolve() {
             g.timer.begin(cmd);
             g.camera->record(cmd, sample, &g.timer);
             g.view->record(cmd, sample, &g.timer);
+            if (g.highlightPipeline) {
+                recordHighlight(cmd);
+            }
             const std::uint32_t scope = g.timer.start(cmd, "shade");
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.shade.get());
             const VkDescriptorSet sets[] = {g.camera->set(), g.viewSet};

@@ -43,10 +43,23 @@
 // The atlas is view-independent: resolve() renders view_samples jittered samples per pixel of the
 // current atlas (a box filter) into a fresh accumulator; nothing of earlier resolves is kept.
 //
-// Limits (the plan says so): diffuse only (a glossy material's Phong lobe is ignored: its albedo
-// only), point and spot lights are not lit (no shadow maps into the atlas yet), textured albedo is
-// taken per texel at its sample point, path-length layers are not separated (all reflected light
-// is in layer `rest`). Overflow: a direction whose bundle did not fit grows the pool and is built
+// Glossy lobes ([HHGM10] sections 5.3-5.4; `glossy` = transfer, interleaved transfer only). The
+// atlas stays view-independent (Lambert); a glossy lobe is carried two ways. Glossy transfer atlas:
+// a glossy texel side hit along direction i also stores what its lobe reflects of the same incoming
+// light toward the one of +-omega_{i+1} on its side, pi weight L f_glossy / A_T per pixel (the
+// Lambert estimator with rho / pi replaced by the lobe); the update adds it to the sender of
+// direction i + 1 only. Averaged over directions this is an unbiased one-sample estimate of the
+// lobe's outgoing radiance toward omega_{i+1} whenever omega_i is distributed independently of
+// omega_{i+1}, and it includes what reached the texel glossily at i - 1: paths through any number
+// of glossy surfaces. Point/spot light reaches the glossy transfer atlas by the direct pass's
+// sample points (their lobes toward omega_{i+1}). Final glossy gather toward the eye: per
+// direction, a jittered camera G-buffer; each glossy pixel p takes the neighbour fragment of its
+// bundle list along the direction on its side and adds L_sender f_glossy(p, d, eye) cos / p_r,
+// weighted by w_j like the atlas; the point/spot lights' own highlight per view sample.
+//
+// Limits (the plan says so): textured albedo is taken per texel at its sample point, path-length
+// layers are not separated (all reflected light is in layer `rest`), glossy lobes need the
+// interleaved transfer (bounce-by-bounce keeps their albedo only). Overflow: a direction whose bundle did not fit grows the pool and is built
 // again; what the device cannot hold is refused with the numbers.
 //
 // Parameters (`bundlelab modes`):
@@ -59,9 +72,15 @@
 //   bilinear           true               bilinear lookups between texel centres inside a chart
 //   memory_cap_mib     0       MiB        node storage limit of the bundle pool (0: half the largest
 //                                         device-local heap)
+//   glossy             transfer           transfer (glossy transfer atlas + gather), gather (toward the
+//                                         eye only), off (albedo only)
 #pragma once
 
 #include "modes/Mode.h"
+
+#include <vulkan/vulkan.h>
+
+#include <modes/atlas/AtlasShared.h>
 
 #include <memory>
 #include <optional>
@@ -84,6 +103,7 @@ public:
     static constexpr const char* kShadowResolution = "shadow_resolution";
     static constexpr const char* kLightSamples = "light_samples";
     static constexpr const char* kMemoryCap = "memory_cap_mib";
+    static constexpr const char* kGlossy = "glossy";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);
@@ -113,6 +133,12 @@ private:
     void buildBundle(const IterationInfo& info);
     // Point/spot lights at scene time `time` into the direct atlas and the first sender.
     void lightDirect(double time);
+    // Glossy materials: point/spot lights into the glossy transfer atlas and the final glossy
+    // gather after a direction's exchange (w_j = weight); the lights' highlight of a view sample.
+    void recordGlossyLights(VkCommandBuffer cmd);
+    shader::AtlasDirectPush directPush() const;
+    void recordGather(VkCommandBuffer cmd, double weight);
+    void recordHighlight(VkCommandBuffer cmd);
     bool bounce() const; // transfer = bounce
     // 1, or 0 where max_segments = 1 leaves out all reflected light (the direct atlas included).
     float directScale() const;

@@ -98,6 +98,7 @@ AtlasTables buildAtlasTables(const atlas::Atlas& atlas, const atlas::AtlasLink& 
         shader::AtlasTexel& texel = t.texels[i];
         texel.emission = maps.emission[i];
         texel.albedo = maps.albedo[i];
+        texel.material = maps.material[i];
         texel.inverseArea = area[i] > 0.0 ? float(1.0 / area[i]) : 0.0f;
         t.totalArea += area[i];
     }

@@ -20,7 +20,7 @@ struct AtlasTexel {
     vec3 emission;     // radiance emitted from the front side
     float inverseArea; // 1 / world area of the surface whose atlas uv falls in the texel; 0: none
     vec3 albedo;       // Lambertian reflectance
-    uint pad0;
+    uint material;     // scene material index (its glossy lobe: the direct pass's glossy transfer)
 };
 BL_STATIC_ASSERT(sizeof(AtlasTexel) == 32, "AtlasTexel layout");
 
@@ -56,8 +56,14 @@ struct AtlasDirectPush {
     uint lightCount;
     uint shadowResolution;
     uint directIntoSender; // 1: sender = emission + direct (interleaved); 0: emission only (bounce pass 1)
+    uvec2 received;   // glossy pass: uint[kAtlasReceivedWords] per texel side, its glossy transfer words
+    vec3 next;        // glossy pass: the next direction omega_{i+1}
+    uint glossy;      // 1: the glossy pass of a direction (else the direct atlas, once)
+    uvec2 materials;  // glossy pass: GpuMaterial[]
+    uint pad0;
+    uint pad1;
 };
-BL_STATIC_ASSERT(sizeof(AtlasDirectPush) == 56, "AtlasDirectPush layout");
+BL_STATIC_ASSERT(sizeof(AtlasDirectPush) == 96, "AtlasDirectPush layout");
 BL_CONST uint kAtlasDirectSet = 0u;
 BL_CONST uint kAtlasDirectBindingLights = 0u;     // GpuLight[] storage buffer
 BL_CONST uint kAtlasDirectBindingShadowMaps = 1u; // r32f 2D-array storage image (ShadowCubePass)
@@ -67,9 +73,17 @@ struct AtlasDirection {
     vec3 environmentForward;  // environment radiance arriving from +omega (escapes past a list's end)
     float weight;             // a_pix / (pi p_r): bundle pixel area over (pi x hemisphere density)
     vec3 environmentBackward; // arriving from -omega (escapes before a list's first hit)
-    uint pad0;
+    uint glossy;              // 1: glossy texels store what they reflect toward +-next (glossy transfer)
+    vec3 next;                // the next direction omega_{i+1} (glossy transfer atlas, [HHGM10] 5.4)
+    float inverseDensity;     // 1 / p_r(omega): the final glossy gather's direction weight
 };
-BL_STATIC_ASSERT(sizeof(AtlasDirection) == 32, "AtlasDirection layout");
+BL_STATIC_ASSERT(sizeof(AtlasDirection) == 48, "AtlasDirection layout");
+
+// Words per texel side of the `received` atlas: this direction's diffuse reflection (float bits,
+// rgb in 0..2) and the glossy transfer atlas (rgb in 4..6): the radiance the side's glossy lobe
+// reflects toward the next direction, sent by the next direction's exchange.
+BL_CONST uint kAtlasReceivedWords = 8u;
+BL_CONST uint kAtlasReceivedGlossy = 4u;
 
 // Exchange pass: one invocation per bundle pixel walks its sorted list.
 struct AtlasExchangePush {
@@ -77,14 +91,14 @@ struct AtlasExchangePush {
     uvec2 texels;     // AtlasTexel[]
     uvec2 triangles;  // AtlasTriangle[] per GpuScene triangle
     uvec2 sender;     // vec4 per texel side: radiance leaving it (emission + reflected estimate)
-    uvec2 received;   // uint[4] per texel side: this direction's reflected radiance (float bits, CAS adds)
+    uvec2 received;   // uint[kAtlasReceivedWords] per texel side: this direction's reflected radiance and
+                      // the glossy transfer atlas (float bits, CAS adds)
     uvec2 direction;  // AtlasDirection
+    uvec2 materials;  // GpuMaterial[] (the glossy lobes of the glossy transfer)
     uint width;       // atlas page
     uint height;
     uint pages;
     uint pad0;
-    uint pad1;
-    uint pad2;
 };
 BL_STATIC_ASSERT(sizeof(AtlasExchangePush) == 128, "AtlasExchangePush layout");
 
@@ -140,10 +154,43 @@ struct AtlasShadePush {
     uvec2 settled;         // vec4 per texel side: finished bounce passes (transfer = bounce), to `rest`
     float directScale;     // 1, or 0 where the path length limit leaves out reflected light
     uint pad0;
-    uint pad1;
-    uint pad2;
+    uvec2 gathered;        // vec4 per pixel: weighted sum of the final glossy gather (0: none), to `rest`
+    uvec2 highlight;       // vec4 per pixel: point/spot light's glossy lobe toward the eye (0: none), to `direct`
 };
-BL_STATIC_ASSERT(sizeof(AtlasShadePush) == 96, "AtlasShadePush layout");
+BL_STATIC_ASSERT(sizeof(AtlasShadePush) == 104, "AtlasShadePush layout");
+
+// Final glossy gather ([HHGM10] section 5.3), after each direction's exchange: per camera pixel
+// whose visible point p is glossy, the neighbour fragment of p along the direction on p's side
+// sends its radiance, weighted by p's glossy lobe toward the eye, cos, 1 / p_r and w_j.
+struct AtlasGatherPush {
+    BundlePoolView pool;
+    uvec2 sender;     // vec4 per texel side (this direction's sender: what the neighbour sends)
+    uvec2 triangles;  // AtlasTriangle[]
+    uvec2 gathered;   // vec4 per pixel: the weighted sum over directions
+    uvec2 direction;  // AtlasDirection
+    uvec2 pad0;
+    uint width;       // camera image
+    uint height;
+    uint atlasWidth;
+    uint atlasHeight;
+    float weight;     // w_j of this direction (the atlas's weighted mean)
+    uint clear;       // 1: the first direction, the sums start over
+};
+BL_STATIC_ASSERT(sizeof(AtlasGatherPush) == 128, "AtlasGatherPush layout");
+
+// Point/spot light reflected by the glossy lobe toward the eye (the view's direct highlight),
+// one invocation per camera pixel per view sample, into a per-pixel buffer the shade pass adds.
+struct AtlasHighlightPush {
+    uvec2 highlight;  // vec4 per pixel (written)
+    uint width;
+    uint height;
+    uint lightCount;
+    uint shadowResolution;
+    uint pad0;
+    uint pad1;
+};
+BL_STATIC_ASSERT(sizeof(AtlasHighlightPush) == 32, "AtlasHighlightPush layout");
+BL_CONST uint kAtlasHighlightLightSet = 1u; // the direct pass's light set (GpuLight[], shadow cubes)
 
 BL_CONST uint kAtlasGroupSize = 64u;     // 1D passes (bundle pixels, texel sides)
 BL_CONST uint kAtlasViewGroupSize = 8u;  // 2D shade pass

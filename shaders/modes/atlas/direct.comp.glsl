@@ -8,7 +8,14 @@
 // The result is kept as its own atlas (the view's layer `direct`) and starts the sender atlas:
 // emission + direct, so the first direction already sends it (interleaved; bounce-by-bounce sends
 // it from pass 2 on, pass 1 sends the emission).
+//
+// Glossy pass (push.glossy, after every direction's exchange, glossy materials only): the glossy
+// transfer atlas of point/spot light. Each glossy texel side adds, averaged over its samples in
+// the same way, what its lobe reflects of each light toward the one of +-omega_{i+1} in the side's
+// hemisphere, sum_l f_glossy(n, w_l, o) E_l, so the next direction sends the lights' glossy
+// reflection too (paths light -> glossy -> ...). The geometric normal of the samples is used.
 #include "modes/atlas/AtlasBuffers.glsl"
+#include "shared/Brdf.h"
 #define BL_SHADOW_SET kAtlasDirectSet
 #define BL_SHADOW_BINDING kAtlasDirectBindingShadowMaps
 #include "gpu/ShadowedLight.glsl"
@@ -20,16 +27,46 @@ layout(push_constant) uniform PushBlock { AtlasDirectPush push; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer AtlasSamples { AtlasSample samples[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer AtlasFirst { uint first[]; };
 
-// Irradiance at p on the side whose normal is n.
-vec3 irradiance(vec3 p, vec3 n) {
-    vec3 e = vec3(0.0);
+// Light of every point/spot light at p on the side whose normal is n: the irradiance, or with
+// `glossy` what material m's lobe reflects of it toward the one of +-next on n's side.
+vec3 lightAt(vec3 p, vec3 n, GpuMaterial m, bool glossy) {
+    vec3 leaving = dot(n, push.next) >= 0.0 ? push.next : -push.next;
+    vec3 sum = vec3(0.0);
     for (uint i = 0u; i < push.lightCount; ++i) {
         vec3 wi, light;
         if (blShadowedLight(lights[i], i, push.shadowResolution, p, n, wi, light)) {
-            e += light;
+            sum += glossy ? blEvalBrdf(m, vec3(0.0), n, wi, leaving) * light : light; // albedo 0: the lobe alone
         }
     }
-    return e;
+    return sum;
+}
+
+// lightAt averaged over the texel's sample points (weighted by area), front and back side.
+void averageOverTexel(uint texel, GpuMaterial m, bool glossy, out vec3 front, out vec3 back) {
+    AtlasSamples samples = AtlasSamples(push.samples);
+    AtlasFirst first = AtlasFirst(push.first);
+    uint begin = first.first[texel], end = first.first[texel + 1u];
+    front = vec3(0.0);
+    back = vec3(0.0);
+    float weights = 0.0;
+    for (uint s = begin; s < end; ++s) {
+        AtlasSample point = samples.samples[s];
+        front += point.weight * lightAt(point.position, point.normal, m, glossy);
+        back += point.weight * lightAt(point.position, -point.normal, m, glossy);
+        weights += point.weight;
+    }
+    if (weights > 0.0) {
+        front /= weights;
+        back /= weights;
+    }
+}
+
+void addGlossy(uint slot, vec3 value) {
+    AtlasReceived received = AtlasReceived(push.received);
+    for (uint c = 0u; c < 3u; ++c) {
+        uint word = kAtlasReceivedWords * slot + kAtlasReceivedGlossy + c;
+        received.words[word] = floatBitsToUint(uintBitsToFloat(received.words[word]) + value[c]);
+    }
 }
 
 void main() {
@@ -37,19 +74,20 @@ void main() {
     if (texel >= push.texelCount) {
         return;
     }
-    AtlasSamples samples = AtlasSamples(push.samples);
-    AtlasFirst first = AtlasFirst(push.first);
-    uint begin = first.first[texel], end = first.first[texel + 1u];
-    vec3 front = vec3(0.0), back = vec3(0.0);
-    float weights = 0.0;
-    for (uint s = begin; s < end; ++s) {
-        AtlasSample point = samples.samples[s];
-        front += point.weight * irradiance(point.position, point.normal);
-        back += point.weight * irradiance(point.position, -point.normal);
-        weights += point.weight;
-    }
     AtlasTexel t = AtlasTexels(push.texels).texels[texel];
-    vec3 scale = weights > 0.0 ? t.albedo / (kPi * weights) : vec3(0.0);
+    vec3 front, back;
+    if (push.glossy != 0u) {
+        GpuMaterial m = AtlasMaterials(push.materials).materials[t.material];
+        if (t.inverseArea > 0.0 && m.specular.x + m.specular.y + m.specular.z > 0.0) {
+            averageOverTexel(texel, m, true, front, back);
+            addGlossy(kAtlasSides * texel + kAtlasFront, front);
+            addGlossy(kAtlasSides * texel + kAtlasBack, back);
+        }
+        return;
+    }
+    GpuMaterial none = GpuMaterial(vec3(0.0), 0u, vec3(0.0), 1.0, 1.0, 0u, 0u, 0u); // unused: not glossy
+    averageOverTexel(texel, none, false, front, back);
+    vec3 scale = t.albedo / kPi;
     AtlasRadiance direct = AtlasRadiance(push.direct);
     direct.radiance[kAtlasSides * texel + kAtlasFront] = vec4(front * scale, 0.0);
     direct.radiance[kAtlasSides * texel + kAtlasBack] = vec4(back * scale, 0.0);

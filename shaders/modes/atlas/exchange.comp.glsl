@@ -9,32 +9,34 @@
 //   albedo_T * L_sender * a_pix / (pi p_r) / A_T
 // (direction.weight = a_pix / (pi p_r), 1 / A_T per texel): the flux of the bundle pixel's ray, so
 // that summed over the pixels hitting T and averaged over directions it is T's reflected radiance.
+//
+// Glossy transfer atlas ([HHGM10] section 5.4): a receiver whose material has a glossy lobe also
+// stores, for the next direction omega_{i+1}, what that lobe reflects of the same incoming light
+// toward the one of +-omega_{i+1} on the receiving side's hemisphere:
+//   L_sender f_glossy(n_s, d_in, o) a_pix / (p_r A_T) = pi weight L f_glossy / A_T
+// (the Lambert term's rho / pi replaced by the lobe at the hit's shading normal). Summed over the
+// pixels hitting T it is a one-direction estimate of T's glossy outgoing radiance toward o; the
+// update adds it to T's sender for direction i + 1 only, and since that sender already holds what
+// came in glossily at i, light travels through any number of glossy surfaces.
 #include "modes/atlas/AtlasBuffers.glsl"
 #include "bundle/Traversal.glsl"
+#include "shared/Brdf.h"
+#include "shared/Octahedral.h"
 
 layout(local_size_x = kAtlasGroupSize) in;
 layout(push_constant) uniform PushBlock { AtlasExchangePush push; };
 
-// Texel of a bundle node, from its triangle's atlas uvs and the hit's barycentrics.
+// Texel of a bundle node.
 uint texelOf(BundleHitPayload hits, uint node) {
-    BundleHit hit = hits.hits[node];
-    AtlasTriangle tri = AtlasTriangles(push.triangles).triangles[hit.id];
-    vec2 b = unpackUnorm2x16(hit.barycentric);
-    vec2 uv = (1.0 - b.x - b.y) * tri.uv0 + b.x * tri.uv1 + b.y * tri.uv2;
-    return blAtlasTexelIndex(uv, tri.page, push.width, push.height);
+    return blAtlasHitTexel(hits.hits[node], push.triangles, push.width, push.height);
 }
-
-// Side of a node's surface that faces -omega (toward smaller depths) and +omega. The face bit is
-// set when the triangle's front faces -omega.
-uint sideFacingBackward(uint next) { return (next & kBundleFrontFaceBit) != 0u ? kAtlasFront : kAtlasBack; }
-uint sideFacingForward(uint next) { return (next & kBundleFrontFaceBit) != 0u ? kAtlasBack : kAtlasFront; }
 
 // received[texel side] += value, three float adds by compare-and-swap (the device layer enables no
 // float atomics; lavapipe's threads rarely collide on one texel).
-void atomicAddRadiance(uint slot, vec3 value) {
+void atomicAddRadiance(uint slot, uint offset, vec3 value) {
     AtlasReceived received = AtlasReceived(push.received);
     for (uint c = 0u; c < 3u; ++c) {
-        uint word = 4u * slot + c;
+        uint word = kAtlasReceivedWords * slot + offset + c;
         uint expected = received.words[word];
         for (;;) {
             uint desired = floatBitsToUint(uintBitsToFloat(expected) + value[c]);
@@ -47,11 +49,35 @@ void atomicAddRadiance(uint slot, vec3 value) {
     }
 }
 
-void receive(uint texel, uint side, vec3 incoming, float weight) {
+// Texel side `side` of node `node` receives radiance `incoming` arriving from direction `toward`
+// (unit, away from the surface: -omega for the side facing backward, +omega forward).
+void receive(BundleHitPayload hits, uint node, uint texel, uint side, vec3 incoming, vec3 toward,
+             AtlasDirection dir) {
     AtlasTexel t = AtlasTexels(push.texels).texels[texel];
-    vec3 value = t.albedo * incoming * (weight * t.inverseArea);
-    if (t.inverseArea > 0.0 && any(greaterThan(value, vec3(0.0)))) {
-        atomicAddRadiance(kAtlasSides * texel + side, value);
+    if (!(t.inverseArea > 0.0) || !any(greaterThan(incoming, vec3(0.0)))) {
+        return;
+    }
+    vec3 value = t.albedo * incoming * (dir.weight * t.inverseArea);
+    if (any(greaterThan(value, vec3(0.0)))) {
+        atomicAddRadiance(kAtlasSides * texel + side, 0u, value);
+    }
+    if (dir.glossy == 0u) {
+        return;
+    }
+    BundleHit hit = hits.hits[node];
+    GpuMaterial m = AtlasMaterials(push.materials).materials[hit.material & kBundleHitMaterialMask];
+    if (m.specular.x + m.specular.y + m.specular.z <= 0.0) {
+        return;
+    }
+    // The shading normal turned to the receiving side (the side faces `toward`), and the one of
+    // +-next in that side's hemisphere: the direction the stored radiance leaves in at i + 1.
+    vec3 n = blUnpackOctahedral(hit.normal);
+    n = dot(n, toward) < 0.0 ? -n : n;
+    vec3 leaving = dot(n, dir.next) >= 0.0 ? dir.next : -dir.next;
+    vec3 lobe = blEvalBrdf(m, vec3(0.0), n, toward, leaving); // albedo 0: the glossy lobe alone
+    vec3 glossy = kPi * dir.weight * t.inverseArea * lobe * incoming;
+    if (any(greaterThan(glossy, vec3(0.0)))) {
+        atomicAddRadiance(kAtlasSides * texel + side, kAtlasReceivedGlossy, glossy);
     }
 }
 
@@ -78,21 +104,22 @@ void main() {
     uint y = head;
     uint yNext = nodes.nodes[y].next;
     uint yTexel = texelOf(hits, y);
-    receive(yTexel, sideFacingBackward(yNext), dir.environmentBackward, dir.weight);
+    vec3 omega = frame.direction;
+    receive(hits, y, yTexel, blAtlasSideFacingBackward(yNext), dir.environmentBackward, -omega, dir);
     for (uint x = yNext & kBundleIndexMask; x != kBundleNil;) {
         uint xNext = nodes.nodes[x].next;
         uint xTexel = texelOf(hits, x);
-        uint ySide = sideFacingForward(yNext);
-        uint xSide = sideFacingBackward(xNext);
+        uint ySide = blAtlasSideFacingForward(yNext);
+        uint xSide = blAtlasSideFacingBackward(xNext);
         vec3 fromY = sender.radiance[kAtlasSides * yTexel + ySide].rgb;
         vec3 fromX = sender.radiance[kAtlasSides * xTexel + xSide].rgb;
-        receive(xTexel, xSide, fromY, dir.weight);
-        receive(yTexel, ySide, fromX, dir.weight);
+        receive(hits, x, xTexel, xSide, fromY, -omega, dir);
+        receive(hits, y, yTexel, ySide, fromX, omega, dir);
         y = x;
         yNext = xNext;
         yTexel = xTexel;
         x = xNext & kBundleIndexMask;
     }
     // Last hit: its +omega side looks out of the scene.
-    receive(yTexel, sideFacingForward(yNext), dir.environmentForward, dir.weight);
+    receive(hits, y, yTexel, blAtlasSideFacingForward(yNext), dir.environmentForward, omega, dir);
 }

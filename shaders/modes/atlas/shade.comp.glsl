@@ -3,7 +3,9 @@
 // Mode atlas, camera view: per pixel, the emitted radiance seen (G-buffer, front faces only), the
 // environment behind the scene, and the reflected radiance of the atlas texel side the camera sees
 // (weighted sum over directions / total weight, layer `rest`; point/spot light of the direct pass,
-// layer `direct`), bilinear between texel centres inside the chart.
+// layer `direct`), bilinear between texel centres inside the chart; where the mode has glossy
+// materials, the final glossy gather (gather.comp.glsl: per pixel over the directions, to `rest`)
+// and the point/spot lights' glossy highlight of this sample (highlight.comp.glsl, to `direct`).
 #include "modes/atlas/AtlasBuffers.glsl"
 #define BL_ACCUM_LAYERS kAtlasAccumLayers
 #include "gpu/CameraSet.glsl"
@@ -78,12 +80,20 @@ void main() {
         layers[l] = vec3(0.0);
     }
     vec4 view = imageLoad(viewImage, pixel);
+    uint index = uint(pixel.y) * push.width + uint(pixel.x);
     if (!blCameraHitSurface(pixel) || view.w == 0.0) {
         layers[kPathEmitted] = blCameraBackground(pixel, push.samplePosition, push.environmentPresent != 0u,
                                                   push.environmentRotation);
     } else {
         layers[kPathEmitted] = imageLoad(gbuffer[kGBufferEmission], pixel).rgb;
         reflected(view.xy, uint(view.z), uint(view.w) - 1u, layers[kPathRest], layers[kPathDirect]);
+        if (push.highlight != uvec2(0u)) {
+            layers[kPathDirect] += AtlasRadiance(push.highlight).radiance[index].rgb;
+        }
+    }
+    // The gather's per-pixel mean already averages its own jittered samples (escaped ones gave 0).
+    if (push.gathered != uvec2(0u)) {
+        layers[kPathRest] += push.reflectedScale * AtlasRadiance(push.gathered).radiance[index].rgb;
     }
     blAccumulate(pixel, layers);
 }

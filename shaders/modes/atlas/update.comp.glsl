@@ -5,7 +5,9 @@
 // Interleaved transfer: the sender becomes emission + direct (point/spot light, direct pass) +
 // sum / W, so the next direction already sends what this one brought and direction i carries light
 // of up to i bounces. Bounce-by-bounce: the sender stays until the pass's last direction, whose
-// update settles the pass's mean and makes it the next pass's sender.
+// update settles the pass's mean and makes it the next pass's sender. The glossy transfer atlas
+// (exchange.comp.glsl: what the side's glossy lobe reflects toward the next direction) joins the
+// interleaved sender for the next direction only, and is cleared with the receiver.
 #include "modes/atlas/AtlasBuffers.glsl"
 #include "bundle/BundleBuffers.glsl"
 
@@ -21,11 +23,15 @@ void main() {
     uint side = slot % kAtlasSides;
     AtlasReceived received = AtlasReceived(push.received);
     AtlasRadiance sums = AtlasRadiance(push.sums);
-    precise vec3 x = push.weight * vec3(uintBitsToFloat(received.words[4u * slot]), uintBitsToFloat(received.words[4u * slot + 1u]),
-                          uintBitsToFloat(received.words[4u * slot + 2u]));
-    received.words[4u * slot] = 0u;
-    received.words[4u * slot + 1u] = 0u;
-    received.words[4u * slot + 2u] = 0u;
+    uint base = kAtlasReceivedWords * slot;
+    precise vec3 x = push.weight * vec3(uintBitsToFloat(received.words[base]), uintBitsToFloat(received.words[base + 1u]),
+                                        uintBitsToFloat(received.words[base + 2u]));
+    uint g = base + kAtlasReceivedGlossy;
+    vec3 glossy = vec3(uintBitsToFloat(received.words[g]), uintBitsToFloat(received.words[g + 1u]),
+                       uintBitsToFloat(received.words[g + 2u]));
+    for (uint w = 0u; w < kAtlasReceivedWords; ++w) {
+        received.words[base + w] = 0u;
+    }
     precise vec3 sum = push.clearSums != 0u ? vec3(0.0) : sums.radiance[2u * slot].rgb;
     precise vec3 error = push.clearSums != 0u ? vec3(0.0) : sums.radiance[2u * slot + 1u].rgb;
     precise vec3 t = sum + x;
@@ -39,7 +45,7 @@ void main() {
         sums.radiance[2u * slot] = vec4(t, 0.0);
         sums.radiance[2u * slot + 1u] = vec4(error, 0.0);
         vec3 emitted = side == kAtlasFront ? AtlasTexels(push.texels).texels[texel].emission : vec3(0.0);
-        sender.radiance[slot] = vec4(emitted + direct + mean, 0.0);
+        sender.radiance[slot] = vec4(emitted + direct + mean + glossy, 0.0);
     } else if (push.settle != 0u) {
         // Bounce: the pass ends; its mean settles and is what the next pass sends (pure: the
         // emission went in pass 1 only).
