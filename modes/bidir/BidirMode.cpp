@@ -4,6 +4,8 @@
 #include "bundle/BundleFrame.h"
 #include "gpu/CameraPass.h"
 #include "gpu/ShadowCubePass.h"
+#include "gpu/PackedTextures.h"
+#include "modes/bidir/EnvironmentBundles.h"
 #include "modes/bidir/ReflectiveShadowMap.h"
 #include "modes/bidir/VplSampler.h"
 #include "scene/Scene.h"
@@ -12,7 +14,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <modes/bidir/BidirEnvironment.h>
 #include <modes/bidir/BidirShared.h>
+#include <modes/bidir/BidirTextures.h>
 #include <modes/bidir/Rsm.h>
 #include <modes/bidir/Suppression.h>
 #include <modes/bidir/evaluate.comp.spv.h>
@@ -71,6 +75,9 @@ std::vector<ParamSpec> BidirMode::parameters() {
          {"rsm", "traced"}},
         {kRsmResolution, std::int64_t{256}, "texels", "face side of the reflective shadow cubes ([TO12]: 256^2)", 4,
          4096, {}},
+        {kEnvironmentBundles, std::int64_t{21}, "bundles",
+         "bundles per frame for direct environment light (Eq. 2 importance directions; none without an environment)",
+         0, 4096, {}},
         {kSuppressionNeighbours, 16.0, "samples", "m' of the suppression's neighbour count m = m' f cos / D ([TO12]: 16)",
          1e-3, 1e6, {}},
         {kInterleave, std::int64_t{1}, "sub-images per side",
@@ -107,6 +114,8 @@ struct BidirMode::Gpu {
     std::unique_ptr<DirectionSampler> directions;
     std::unique_ptr<VplSampler> vpls;
     std::unique_ptr<ReflectiveShadowMap> rsm; // vpl_source = rsm
+    std::unique_ptr<EnvironmentBundles> environment; // pool slots after the pairs'
+    std::unique_ptr<gpu::PackedTextures> textures;   // albedo at bundle hits
     vk::Buffer noRsm;                         // vpl_source = traced: the CDF block's header, N = 0
     vk::Buffer vplBuffer;
     vk::DescriptorSetLayout setLayout;
@@ -186,8 +195,14 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
                                                          : "reprojection = always")
                              : "static camera: every cache's warp is the identity (moving meshes still fail the "
                                "log-depth test), the image is the same"});
-    if (f.emissiveMeshes || f.environment) {
-        p.push_back({"area/environment light", false, "not lit by bidir yet: use reference or multibounce"});
+    const auto envBundles = mSettings.getInt(kEnvironmentBundles);
+    p.push_back({"environment bundles", f.environment && envBundles > 0,
+                 !f.environment   ? "no environment"
+                 : envBundles > 0 ? std::to_string(envBundles) + " bundles per frame by Eq. 2 importance: direct "
+                                                                 "environment light (indirect: not yet)"
+                                  : "environment_bundles = 0: the environment lights nothing"});
+    if (f.emissiveMeshes) {
+        p.push_back({"area light", false, "not lit by bidir yet: use reference or multibounce"});
     }
     return p;
 }
@@ -231,8 +246,12 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
                               vk::MemoryUse::Upload);
     g->bounds = scene.bounds();
     setUpInterleaving(scene, width, height);
+    g->environment = std::make_unique<EnvironmentBundles>(
+        *ctx, scene, static_cast<std::uint32_t>(mSettings.getInt(kEnvironmentBundles)), 0.1f);
+    g->textures = std::make_unique<gpu::PackedTextures>(*ctx, scene);
+    const bool pairBundles = (strategy != shader::kBidirStrategyVpl || twoBounce) && g->shadows->lightCount() > 0;
 
-    if ((strategy != shader::kBidirStrategyVpl || twoBounce) && g->shadows->lightCount() > 0) {
+    if (pairBundles || g->environment->count() > 0) {
         if (!ctx->geometryShader()) {
             throw Error("bidir: strategy " + mSettings.getString(kStrategy) + " with bounces = " +
                         std::to_string(mSettings.getInt(kBounces)) +
@@ -240,7 +259,7 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
         }
         const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
         BundlePoolOptions options;
-        options.slots = pairs;
+        options.slots = (pairBundles ? pairs : 0u) + g->environment->count();
         options.slotPixels = resolution * resolution;
         options.payload = BundlePayload::Hit;
         options.memoryCapBytes = static_cast<std::uint64_t>(mSettings.getInt(kMemoryCap)) << 20;
@@ -253,7 +272,7 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     }
     // A scope per bundle build and per VPL cube, plus the camera, light and evaluation passes.
     constexpr std::uint32_t kOtherScopes = 8;
-    g->timer = vk::GpuTimer(*ctx, 2 * pairs + kOtherScopes);
+    g->timer = vk::GpuTimer(*ctx, 2 * pairs + g->environment->count() + kOtherScopes);
 
     VkDevice device = ctx->device();
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -263,9 +282,11 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
                  {shader::kBidirBindingVplMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
                  {shader::kBidirBindingVpls, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                  {shader::kBidirBindingRsmCdf, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kBidirBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kBidirBindingTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                  {shader::kBidirBindingFrame, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
                  {shader::kBidirBindingInterleave, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
-    g->descriptorPool = vk::DescriptorPool(device, 1, 4);
+    g->descriptorPool = vk::DescriptorPool(device, 1, 8);
     g->set = g->descriptorPool.allocate(g->setLayout.get());
     vk::DescriptorWriter()
         .buffer(shader::kBidirBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
@@ -275,6 +296,8 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
                VK_IMAGE_LAYOUT_GENERAL)
         .buffer(shader::kBidirBindingVpls, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->vplBuffer.get())
         .buffer(shader::kBidirBindingRsmCdf, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->rsm ? g->rsm->cdf() : g->noRsm.get())
+        .buffer(shader::kBidirBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->environment->buffer())
+        .buffer(shader::kBidirBindingTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->textures->buffer())
         .image(shader::kBidirBindingFrame, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, mInterleave->frameView(),
                VK_IMAGE_LAYOUT_GENERAL)
         .buffer(shader::kBidirBindingInterleave, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, mInterleave->evaluateBuffer())
@@ -311,18 +334,22 @@ void BidirMode::setUpInterleaving(const Scene& scene, std::uint32_t width, std::
 void BidirMode::buildBundles(const IterationInfo& info) {
     Gpu& g = *mGpu;
     const std::uint32_t slots = g.pool->slots();
+    const std::uint32_t pairSlots = slots - g.environment->count(); // then the environment's
     const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
-    std::vector<shader::BundleFrame> frames(slots);
-    for (std::uint32_t k = 0; k < slots; ++k) {
+    std::vector<shader::BundleFrame> frames(pairSlots);
+    for (std::uint32_t k = 0; k < pairSlots; ++k) {
         const BundleDirection dir =
-            g.directions->sample(static_cast<std::uint32_t>(mInterleave->sequenceBase(mIterations, slots) + k));
+            g.directions->sample(static_cast<std::uint32_t>(mInterleave->sequenceBase(mIterations, pairSlots) + k));
         frames[k] = g.visiblePoints.empty() ? bundleFrameForSphere(dir.omega, dir.rotation, g.bounds.center(),
                                                                    g.bounds.radius(), resolution)
                                             : bundleFrameForPoints(dir.omega, dir.rotation, g.visiblePoints,
                                                                    g.bounds.center(), g.bounds.radius(), resolution);
         g.pixelGainSum += 2.0 * g.bounds.radius() / (double(resolution) * frames[k].pixelSize);
     }
-    g.bundlesBuilt += slots;
+    g.bundlesBuilt += pairSlots;
+    const std::vector<shader::BundleFrame> environment = g.environment->frames(
+        mIterations, static_cast<std::uint32_t>(info.seed), pairSlots, g.visiblePoints, g.bounds, resolution);
+    frames.insert(frames.end(), environment.begin(), environment.end());
     for (;;) {
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);

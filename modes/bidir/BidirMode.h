@@ -44,6 +44,10 @@
 //                                   traced: first hits of light rays on the CPU (Embree,
 //                                   VplSampler.h), p_e uniform on the sphere or in the spot cone.
 //   rsm_resolution         256      texels per face side of the reflective shadow cubes ([TO12]: 256)
+//   environment_bundles    21       E bundles per frame for direct environment light, directions by
+//                                   Eq. 2's importance (L_o = 0.1 of the mean luminance), in the
+//                                   same pool and fit (modes/bidir/EnvironmentBundles.h); skipped
+//                                   without an environment. Indirect environment light: not yet.
 //   fit                    scene    bundle frames: around the points the G-buffer sees this frame
 //                                   ([TO12s] B.1, core bundleFrameForPoints; smaller pixels for the
 //                                   same bundle_resolution) or the scene's bounding sphere. A
@@ -60,9 +64,9 @@
 //   reprojection           auto     auto | always: auto warps into the caches' cameras only when the
 //                                   camera is animated (a static camera's warp is the identity)
 //
-// Not yet: reflective
-// shadow maps on the GPU (VPL rays are traced on the CPU), textured albedo at VPLs and bundle hits
-// (their material's albedo is used), area emitters and environment light (not lit here).
+// Textured albedo: at bundle hits (the payload's UV in the packed texture buffer) and at RSM VPLs
+// (the RSM's G-buffer). Not yet: textures at traced VPLs (vpl_source = traced: the material's
+// albedo), area emitters and indirect environment light (not lit here).
 #pragma once
 
 #include "bundle/BundlePool.h"
@@ -90,6 +94,7 @@ public:
     static constexpr const char* kSuppressionNeighbours = "suppression_neighbours";
     static constexpr const char* kVplSource = "vpl_source";
     static constexpr const char* kRsmResolution = "rsm_resolution";
+    static constexpr const char* kEnvironmentBundles = "environment_bundles";
     static constexpr const char* kFit = "fit";
     static constexpr const char* kInterleave = "interleave";
     static constexpr const char* kInterleaveFilter = "interleave_filter";

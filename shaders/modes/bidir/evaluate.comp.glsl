@@ -52,6 +52,8 @@ const uint kBidirMapVpl = 1u; // blShadowVisibilityIn's map 1: the VPLs' cubes (
 // Set when x fell outside a bundle's frame: the pixel's sample is dropped (never added, counted by
 // the accumulator as dropped_samples) rather than biased by a missing bundle term.
 bool gOutsideBundle = false;
+#include "modes/bidir/EnvironmentDirect.glsl"
+#include "modes/bidir/HitAlbedo.glsl"
 
 // Directional sample densities (samples per steradian, [TO12] Eq. 15-17) of the one-bounce path
 // x0 -> y -> x whose middle vertex y has area densities pA1 (VPL strategy) and pA2 (bundle
@@ -151,13 +153,13 @@ vec3 vplTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
 }
 
 // Two-bounce path x0 -> x1 = VPL k -> x2 = y -> x ([TO12] Eq. 7-8), y the bundle hit of pair k
-// (normal ny turned toward x, BRDF my) reached from x along d: everything but x's own factor
+// (normal ny turned toward x, BRDF my, albedo ay) reached from x along d: everything but x's own factor
 // f_{2,3,4} (n3.w_{3,2}) / p_r, which the caller shares with the one-bounce bundle term:
 //   I f_{0,1,2} f_{1,2,3} G(x1, x2) V(x1, x2) / (P(l) p_e(w_{0,1})),
 // the path's density p_{1,2} of Eq. 8 being P(l) p_e p_r |x1 - x2|^2 / (cos1 cos2). Visibility
 // x1 - x2 from the VPL's shadow cube, shared with its one-bounce term. Clamping (this term
 // only): |x1 - x2|^2 >= push.twoBounceMinDistance2, a bias stated in BidirMode.h.
-vec3 twoBounceTerm(uint k, vec3 y, vec3 ny, GpuMaterial my, vec3 wy) {
+vec3 twoBounceTerm(uint k, vec3 y, vec3 ny, GpuMaterial my, vec3 ay, vec3 wy) {
     BidirVpl v;
     vec3 wi;
     float r2, cos2, cos1, visibility; // cos2 at x2 = y, cos1 at x1 = the VPL
@@ -165,8 +167,7 @@ vec3 twoBounceTerm(uint k, vec3 y, vec3 ny, GpuMaterial my, vec3 wy) {
         return vec3(0.0);
     }
     vec3 f1 = blEvalBrdf(materials[v.material], v.albedo, v.normal, v.toLight, -wi);
-    // Textured albedo at y: not yet (the material's albedo; BidirMode.h says so).
-    vec3 f2 = blEvalBrdf(my, my.albedo, ny, wi, wy);
+    vec3 f2 = blEvalBrdf(my, ay, ny, wi, wy);
     float g = visibility * cos1 * cos2 / max(r2, push.twoBounceMinDistance2);
     return v.intensity * f1 * f2 * (g / v.pdfLight);
 }
@@ -205,12 +206,13 @@ vec3 bundleTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, ino
     vec3 ny = dot(shading, wy) >= 0.0 ? shading : -shading; // two-sided reflection
     float cosY = dot(ny, wy);
     GpuMaterial my = materials[payload.material & kBundleHitMaterialMask];
+    vec3 ay = bidirHitAlbedo(my, payload.uv); // textured
     float weightX = abs(cosine) / push.hemispherePdf;
     if (push.bounces >= 2u) {
         // Eq. 14 at x for the two-bounce path: d = N p_r (d on the light side is a delta).
         vec3 fx2 = blBidirEvalBrdf(m, albedo, n, d, wo, float(push.pairs) * push.hemispherePdf, push.suppression,
                                    push.suppressionNeighbours);
-        twoBounce += twoBounceTerm(k, y, ny, my, wy) * fx2 * weightX;
+        twoBounce += twoBounceTerm(k, y, ny, my, ay, wy) * fx2 * weightX;
     }
     if (push.strategy == kBidirStrategyVpl) {
         return vec3(0.0);
@@ -219,8 +221,7 @@ vec3 bundleTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, ino
     vec3 sum = vec3(0.0);
     for (uint l = 0u; l < push.lightCount; ++l) {
         float p1, dX;
-        // Textured albedo at y: not yet (the material's albedo; BidirMode.h says so).
-        vec3 reflected = lightAt(l, y, ny, my, my.albedo, wy, p2, p1, dX);
+        vec3 reflected = lightAt(l, y, ny, my, ay, wy, p2, p1, dX);
         float weight = push.strategy == kBidirStrategyBundle ? 1.0 : (p2 > 0.0 ? p2 / (p1 + p2) : 0.0);
         vec3 fx = blBidirEvalBrdf(m, albedo, n, d, wo, dX, push.suppression, push.suppressionNeighbours);
         sum += reflected * fx * (weight * weightX);
@@ -271,6 +272,7 @@ void main() {
         float unusedPdf, unusedDensity;
         layers[kPathDirect] += lightAt(l, x, n, m, albedo, wo, -1.0, unusedPdf, unusedDensity);
     }
+    layers[kPathDirect] += bidirEnvironmentDirect(x, n, m, albedo, wo);
     vec3 indirect = vec3(0.0);
     vec3 twoBounce = vec3(0.0);
     const bool bundles = push.strategy != kBidirStrategyVpl || push.bounces >= 2u;

@@ -15,6 +15,7 @@
 #include "modes/reference/ReferenceTestSupport.h"
 #include "scene/SceneLoader.h"
 #include "support/TestFiles.h"
+#include "support/TexturedScenes.h"
 #include "support/VulkanTest.h"
 
 #include <cmath>
@@ -32,6 +33,15 @@ constexpr std::uint32_t kFrames = 512; // frames per run of the single-strategy 
 constexpr std::uint32_t kMisFrames = kFrames / 2;
 constexpr std::uint32_t kReferenceSpp = 1024;
 constexpr const char* kRsm = "rsm_resolution=64"; // vpl_source = rsm runs: texels per cube face side
+// Environment bundles' test: E bundles per frame, frames per seed, and the region tolerance (the
+// seeds' spread at 192 directions is 2-6% of a region; measured at 128 directions: every region
+// within -6.0%..+2.5%, the image mean -0.34 +- 1.21%). Regions that see mostly sky (direct light
+// below 5% of the mean region's) are left out: their relative error means nothing.
+constexpr std::uint32_t kEnvironmentBundles = 8;
+constexpr std::uint32_t kEnvironmentFrames = 24;
+constexpr double kEnvironmentTolerance = 0.10;
+// Frames per seed of the textured-albedo test.
+constexpr std::uint32_t kTexturedFrames = 64;
 const std::vector<std::string> kCommon = {"pairs_per_frame=8", "bundle_resolution=128", "shadow_resolution=256",
                                           "vpl_shadow_resolution=128"};
 
@@ -71,6 +81,14 @@ double counterOf(const ImageSet& out, const std::string& name) {
     }
     ADD_FAILURE() << "no counter " << name;
     return -1.0;
+}
+
+// Mean of each channel over an image.
+glm::dvec3 channelMeans(const Image& image) {
+    glm::dvec3 sum(0.0);
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) sum += glm::dvec3(image.at(x, y));
+    return sum / double(image.width() * image.height());
 }
 
 double luminance(const glm::vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
@@ -401,4 +419,93 @@ TEST_F(Bidir, VisibleFitCoversEveryCameraPointWithSmallerPixels) {
     std::printf("effective bundle resolution: scene %.1f, visible %.1f\n", effective[0], effective[1]);
     EXPECT_DOUBLE_EQ(effective[0], 128.0);
     EXPECT_GT(effective[1], 128.0);
+}
+
+// Direct environment light by environment bundles ([TO12] section 3, Eq. 2 importance directions):
+// on the sky-blocks scene (no point light: no pairs) the `direct` layer converges to the
+// reference's region by region and in its image mean, no sample dropped; with
+// environment_bundles = 0 the plan skips the pass and `direct` is zero.
+TEST_F(Bidir, EnvironmentBundlesConvergeToReferenceDirect) {
+    Scene s = loadScene(bl::test::sourcePath("data/analytic/sky-blocks.toml"));
+    s.camera.resolution = {kResolution, kResolution};
+    const std::vector<double> reference = regionMeans(bl::test::layerOf(bl::test::renderReference(s, kReferenceSpp), "direct"));
+    std::vector<std::vector<double>> perSeed;
+    for (std::uint32_t seed = 0; seed < kSeeds; ++seed) {
+        std::vector<std::string> settings = kCommon;
+        settings.push_back("environment_bundles=" + std::to_string(kEnvironmentBundles));
+        std::unique_ptr<Mode> mode = createMode("bidir", settings);
+        for (const PlannedPass& p : mode->plan(s)) {
+            if (p.name == "environment bundles") EXPECT_TRUE(p.runs) << p.reason;
+        }
+        mode->setScene(s, &ctx());
+        for (std::uint32_t f = 0; f < kEnvironmentFrames; ++f) mode->iterate({f, seed + 1, 0.0});
+        ImageSet out = mode->resolve();
+        EXPECT_EQ(out.nonFiniteSamples, 0u);
+        EXPECT_EQ(counterOf(out, "dropped_samples"), 0.0);
+        perSeed.push_back(regionMeans(bl::test::layerOf(out, "direct")));
+    }
+    const RegionStats stats = statsOf(perSeed, reference);
+    double meanRegion = 0.0;
+    for (double r : reference) meanRegion += r / reference.size();
+    double mean = 0.0, ref = 0.0, variance = 0.0;
+    for (int i = 0; i < kRegions * kRegions; ++i) {
+        mean += stats.mean[i];
+        ref += reference[i];
+        variance += stats.stderr_[i] * stats.stderr_[i];
+        std::printf("environment direct region %2d: %.5f +- %.5f  reference %.5f\n", i, stats.mean[i], stats.stderr_[i],
+                    reference[i]);
+        if (reference[i] < 0.05 * meanRegion) continue;
+        EXPECT_LT(stats.stderr_[i], kEnvironmentTolerance * reference[i]) << "region " << i << ": too noisy to test";
+        EXPECT_NEAR(stats.mean[i], reference[i], kEnvironmentTolerance * reference[i] + 3.0 * stats.stderr_[i])
+            << "region " << i;
+    }
+    std::printf("environment direct: image mean %.5f reference %.5f (%+.2f%%) +- %.2f%%\n", mean, ref,
+                100.0 * (mean / ref - 1.0), 100.0 * std::sqrt(variance) / ref);
+    EXPECT_NEAR(mean, ref, kImageTolerance * ref + 3.0 * std::sqrt(variance));
+
+    std::unique_ptr<Mode> off = createMode("bidir", {"environment_bundles=0", "pairs_per_frame=2"});
+    for (const PlannedPass& p : off->plan(s)) {
+        if (p.name == "environment bundles") EXPECT_FALSE(p.runs) << p.reason;
+    }
+    off->setScene(s, &ctx());
+    off->iterate({0, 1, 0.0});
+    double direct = 0.0;
+    const Image image = bl::test::layerOf(off->resolve(), "direct");
+    for (int y = 0; y < kResolution; ++y)
+        for (int x = 0; x < kResolution; ++x) direct += luminance(image.at(x, y));
+    EXPECT_EQ(direct, 0.0);
+}
+
+// Textured albedo at bundle hits (the payload's UV in the packed texture buffer) and at RSM VPLs
+// (the RSM's G-buffer): the point-lit box with a red/green floor, whose untextured white would put
+// indirect1's blue channel far off (+17% for multibounce's same scene). Each channel's image mean
+// of indirect1 against the reference's, with the seeds' spread.
+TEST_F(Bidir, TexturedAlbedoAtBundleHitsAndRsmVpls) {
+    Scene s = cornellPoint();
+    ASSERT_TRUE(bl::test::texturePlanar(s, "floor", bl::test::redGreenTexture()));
+    const ImageSet ref = bl::test::renderReference(s, kReferenceSpp);
+    const glm::dvec3 reference = channelMeans(bl::test::layerOf(ref, "indirect1"));
+    for (const std::vector<std::string>& extra :
+         {std::vector<std::string>{"strategy=bundle", "bounces=1"},
+          std::vector<std::string>{"strategy=vpl", "bounces=1", "vpl_source=rsm", kRsm}}) {
+        glm::dvec3 sum(0.0), sum2(0.0);
+        for (std::uint32_t seed = 0; seed < kSeeds; ++seed) {
+            std::vector<std::string> settings = kCommon;
+            settings.insert(settings.end(), extra.begin(), extra.end());
+            std::unique_ptr<Mode> mode = createMode("bidir", settings);
+            mode->setScene(s, &ctx());
+            for (std::uint32_t f = 0; f < kTexturedFrames; ++f) mode->iterate({f, seed + 1, 0.0});
+            const glm::dvec3 m = channelMeans(bl::test::layerOf(mode->resolve(), "indirect1"));
+            sum += m;
+            sum2 += m * m;
+        }
+        const glm::dvec3 mean = sum / double(kSeeds);
+        const glm::dvec3 spread = glm::sqrt(glm::max(glm::dvec3(0.0), (sum2 - double(kSeeds) * mean * mean) /
+                                                                         double(kSeeds - 1) / double(kSeeds)));
+        for (int c = 0; c < 3; ++c) {
+            std::printf("%s: indirect1 channel %d %.5f +- %.5f reference %.5f (%+.2f%%)\n", extra[0].c_str(), c, mean[c],
+                        spread[c], reference[c], 100.0 * (mean[c] / reference[c] - 1.0));
+            EXPECT_NEAR(mean[c], reference[c], kImageTolerance * reference[c] + 3.0 * spread[c]) << extra[0] << " " << c;
+        }
+    }
 }
