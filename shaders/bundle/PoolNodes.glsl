@@ -23,6 +23,17 @@ uint blPoolAllocateOne(BundleCounterBlock block) {
     return index < block.counters.capacity ? index : kBundleNil;
 }
 
+// `count` consecutive node indices from the returned one, or kBundleNil when the pool is full (then
+// all are counted). Indices at or past the capacity are fragments that did not fit: they count in
+// `allocated` (requested = allocated + excess) and the caller drops them.
+uint blPoolAllocate(BundleCounterBlock block, uint count) {
+    if (block.counters.allocated >= block.counters.capacity) {
+        blPoolAddExcess(block, count);
+        return kBundleNil;
+    }
+    return atomicAdd(block.counters.allocated, count);
+}
+
 // Depth along omega where `ray` (a pixel's ray at depth 0) meets the plane (n, offset): false when
 // the ray runs inside it (or the plane is degenerate: GpuScene gives such triangles a zero normal).
 bool blPoolPlaneDepth(BundleFrame frame, vec3 ray, vec3 n, float offset, out float depth, out bool frontFacesMinusOmega) {

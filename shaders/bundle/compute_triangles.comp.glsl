@@ -9,6 +9,11 @@
 // triangle's plane along the pixel's ray, the allocator's overflow contract and the list link
 // from PoolNodes.glsl. No payload (the rasterized build writes it).
 //
+// Each row of a triangle's box is walked only over its covered span, found exactly from the three
+// edge functions (integer floor division, the same inequalities as the per-pixel test), so the
+// cost is rows + fragments, not the box's area (long thin triangles in Sponza); a row's nodes are
+// allocated with one atomic (blPoolAllocate), not one per fragment.
+//
 // No invocation loops more than kBundleComputeBandPixels times: the small pass walks each triangle
 // whose box is at most that large and lists the others, the big pass (an indirect dispatch) walks
 // each listed triangle in bands of push.rowsPerBand tile rows. (lavapipe's shader compiler ends
@@ -41,6 +46,30 @@ bool ownsCentresOnEdge(i64vec2 a, i64vec2 b) {
 }
 
 int64_t edgeFunction(i64vec2 a, i64vec2 b, i64vec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); }
+
+// floor(a / b) for b > 0 (GLSL's integer division truncates toward zero).
+int64_t floorDivide(int64_t a, int64_t b) {
+    int64_t q = a / b;
+    return q * b > a ? q - 1 : q;
+}
+
+// Narrows [first, last] to the pixels x of the row whose centres (x * kUnit + half, centreY) edge
+// a -> b covers: edgeFunction >= 1, or >= 0 where the edge owns centres on it. Along a row the edge
+// function is C - D x with D = (b.y - a.y) kUnit, so the condition bounds x from one side.
+void clipSpanToEdge(i64vec2 a, i64vec2 b, bool owns, int64_t centreY, int64_t half_, inout int64_t first, inout int64_t last) {
+    int64_t threshold = owns ? 0 : 1;
+    int64_t d = (b.y - a.y) * kUnit;
+    int64_t c = (b.x - a.x) * (centreY - a.y) - (b.y - a.y) * (half_ - a.x) - threshold; // covered: c - d x >= 0
+    if (d == 0) {
+        if (c < 0) {
+            last = first - 1;
+        }
+    } else if (d > 0) {
+        last = min(last, floorDivide(c, d));
+    } else {
+        first = max(first, -floorDivide(c, -d)); // x >= ceil(c / d) = -floor(c / -d)
+    }
+}
 
 void main() {
     const bool bigPass = push.pass == kBundleComputeBigPass;
@@ -95,24 +124,34 @@ void main() {
         big.triangles[atomicAdd(big.header.dispatchY, 1u)] = local;
         return;
     }
+    uint capacity = block.counters.capacity;
     bool own0 = ownsCentresOnEdge(v[1], v[2]), own1 = ownsCentresOnEdge(v[2], v[0]), own2 = ownsCentresOnEdge(v[0], v[1]);
     for (int y = y0; y <= y1; ++y) {
-        for (int x = x0; x <= x1; ++x) {
-            i64vec2 c = i64vec2(int64_t(x) * kUnit + half_, int64_t(y) * kUnit + half_);
-            int64_t e0 = edgeFunction(v[1], v[2], c), e1 = edgeFunction(v[2], v[0], c), e2 = edgeFunction(v[0], v[1], c);
-            if (e0 < 0 || e1 < 0 || e2 < 0 || (e0 == 0 && !own0) || (e1 == 0 && !own1) || (e2 == 0 && !own2)) {
-                continue;
-            }
-            ivec2 pixel = ivec2(x - int(frame.tileX), y - int(frame.tileY));
+        int64_t centreY = int64_t(y) * kUnit + half_, first = x0, last = x1;
+        clipSpanToEdge(v[1], v[2], own0, centreY, half_, first, last);
+        clipSpanToEdge(v[2], v[0], own1, centreY, half_, first, last);
+        clipSpanToEdge(v[0], v[1], own2, centreY, half_, first, last);
+        int row = y - int(frame.tileY);
+        // Two walks of the span: count the fragments inside the depth range, allocate them at once,
+        // then link them (the same float depth both times).
+        uint count = 0u;
+        for (int x = int(first); x <= int(last); ++x) {
             float depth;
             bool front;
-            if (!blPoolPlaneDepth(frame, blBundlePixelRay(frame, vec2(pixel) + 0.5), n, offset, depth, front) ||
-                depth < frame.depthNear || depth > frame.depthFar) {
-                continue;
-            }
-            uint index = blPoolAllocateOne(block);
-            if (index != kBundleNil) {
-                blPoolLink(push.headAddress, push.nodeAddress, uint(pixel.y) * frame.width + uint(pixel.x), index, depth, front);
+            count += blPoolPlaneDepth(frame, blBundlePixelRay(frame, vec2(x - int(frame.tileX), row) + 0.5), n, offset, depth, front) &&
+                     depth >= frame.depthNear && depth <= frame.depthFar ? 1u : 0u;
+        }
+        uint index = count == 0u ? kBundleNil : blPoolAllocate(block, count);
+        if (index == kBundleNil) {
+            continue;
+        }
+        for (int x = int(first); x <= int(last) && index < capacity; ++x) {
+            int column = x - int(frame.tileX);
+            float depth;
+            bool front;
+            if (blPoolPlaneDepth(frame, blBundlePixelRay(frame, vec2(column, row) + 0.5), n, offset, depth, front) &&
+                depth >= frame.depthNear && depth <= frame.depthFar) {
+                blPoolLink(push.headAddress, push.nodeAddress, uint(row) * frame.width + uint(column), index++, depth, front);
             }
         }
     }
