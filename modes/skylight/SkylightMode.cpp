@@ -51,6 +51,10 @@ std::vector<ParamSpec> SkylightMode::parameters() {
         {kControlVariate, std::string("off"), "",
          "on: add the tabulated unoccluded Lambert irradiance and let bundles estimate only what occluders remove",
          0, 0, {"off", "on"}},
+        {kGBufferReuse, std::int64_t{1}, "directions",
+         "directions that share one jittered G-buffer (the camera pass paid once per k; same mean, the pixel "
+         "footprint integrated with k times fewer jitter samples)",
+         1, 4096, {}},
     };
 }
 
@@ -76,6 +80,7 @@ struct SkylightMode::Gpu {
     vk::Pipeline pipeline;
     vk::GpuTimer timer;
     std::vector<glm::vec3> visiblePoints; // for fit = visible: this iteration's
+    std::optional<gpu::CameraSample> gbufferSample; // what the G-buffer holds now (gbuffer_reuse)
     Bounds bounds;                        // the scene's, over all keyframes: computed once
     PassTimes builds;                     // bundle build ms (from the builder's timer)
     BundleStats lastStats;
@@ -179,18 +184,24 @@ void SkylightMode::iterate(const IterationInfo& info) {
             static_cast<float>(mSettings.getDouble(kImportanceOffset)));
     }
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
-    const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time);
-    mContext->submitAndWait([&](VkCommandBuffer cmd) {
-        g.timer.begin(cmd);
-        g.camera->record(cmd, sample, &g.timer);
-    });
-    g.timer.collect();
+    // A new jittered G-buffer every gbuffer_reuse directions, and whenever the scene's time moved.
+    const auto reuse = static_cast<std::uint32_t>(mSettings.getInt(kGBufferReuse));
+    const bool freshGBuffer = !g.gbufferSample || mIterations % reuse == 0 || g.gbufferSample->time != info.time;
+    if (freshGBuffer) {
+        g.gbufferSample = g.camera->sample(mIterations / reuse, true, info.time);
+        mContext->submitAndWait([&](VkCommandBuffer cmd) {
+            g.timer.begin(cmd);
+            g.camera->record(cmd, *g.gbufferSample, &g.timer);
+        });
+        g.timer.collect();
+    }
+    const gpu::CameraSample& sample = *g.gbufferSample;
 
     const BundleDirection dir = g.directions->sample(mIterations);
     const float rotation = mSettings.getBool(kRotate) ? dir.rotation : 0.0f;
     const std::uint32_t resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
     const Bounds& bounds = g.bounds;
-    if (mSettings.getString(kFit) == "visible") {
+    if (mSettings.getString(kFit) == "visible" && freshGBuffer) {
         // The visible points of this iteration's G-buffer: no margin covers jitter (at a silhouette
         // it moves a pixel's point onto another surface), so the frame is fitted to the points the
         // visibility pass will look up, every iteration.

@@ -27,6 +27,10 @@
 //                                L_e (albedo/pi) (n.d)] / p(d) with E(n) the unoccluded irradiance
 //                                tabulated once per map (IrradianceTable.h): same mean, and the
 //                                bundles estimate only the light occluders remove
+//   gbuffer_reuse      1         directions that share one jittered G-buffer (the camera pass
+//                                is paid once per k directions; jitter and directions are
+//                                independent, so the mean is unchanged, while the pixel
+//                                footprint is integrated with k times fewer jitter samples)
 #pragma once
 
 #include "bundle/BundleBuilder.h"
@@ -50,6 +54,7 @@ public:
     static constexpr const char* kVisibility = "visibility";
     static constexpr const char* kControlVariate = "control_variate";
     static constexpr const char* kBundleBackend = "bundle_backend";
+    static constexpr const char* kGBufferReuse = "gbuffer_reuse";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);

@@ -153,6 +153,38 @@ TEST_F(Skylight, ComputeBackendGivesTheRasterImage) {
     EXPECT_NEAR(meanCompute / meanRaster, 1.0, 1e-4);
 }
 
+// gbuffer_reuse = k: one jittered G-buffer serves k directions. The mean must not move (jitter and
+// directions are independent) and the camera pass must run once per k directions. With one G-buffer
+// for all directions the pixel footprint is not integrated: the blocks' silhouettes stay aliased
+// against the reference's box filter (how the block test would catch a G-buffer never refreshed).
+TEST_F(Skylight, GBufferReuseKeepsTheMeanAndRendersOncePerKDirections) {
+    Scene s = loadSmall("data/analytic/ao-blocks.toml", 48);
+    Image ref = bl::test::renderReference(s, 1024, {"max_segments=2"}).radiance();
+    auto run = [&](const std::string& reuse, unsigned& gbufferPasses) {
+        std::unique_ptr<Mode> mode = createMode("skylight", {"bundle_resolution=256", "gbuffer_reuse=" + reuse});
+        mode->setScene(s, &ctx());
+        for (std::uint32_t i = 0; i < 512; ++i) mode->iterate({i, 0, 0.0});
+        for (const PassTime& t : mode->timings()) {
+            if (t.name == "gbuffer") gbufferPasses = t.count;
+        }
+        ImageSet out = mode->resolve();
+        EXPECT_EQ(out.nonFiniteSamples, 0u);
+        return computeMetrics(out.radiance(), ref);
+    };
+    unsigned every = 0, shared8 = 0, once = 0;
+    ImageMetrics m1 = run("1", every), m8 = run("8", shared8), mAll = run("512", once);
+    std::printf("gbuffer_reuse 1 / 8 / 512: mean %.4f / %.4f / %.4f, block RMS %.4f / %.4f / %.4f, relMSE %.3g / "
+                "%.3g / %.3g, G-buffer passes %u / %u / %u\n",
+                m1.meanRatio[1], m8.meanRatio[1], mAll.meanRatio[1], m1.blockRatios.rms, m8.blockRatios.rms,
+                mAll.blockRatios.rms, m1.relMse, m8.relMse, mAll.relMse, every, shared8, once);
+    EXPECT_EQ(every, 512u);
+    EXPECT_EQ(shared8, 64u);
+    EXPECT_EQ(once, 1u);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(m8.meanRatio[c], 1.0, 0.005);
+    EXPECT_LT(m8.blockRatios.rms, 1.5 * m1.blockRatios.rms + 0.003);
+    EXPECT_GT(mAll.relMse, 2.0 * m8.relMse);
+}
+
 // fit = visible: every camera-visible point of every jittered iteration must fall inside that
 // iteration's bundle frame. A frame fitted once to the first G-buffer lost the points jitter
 // moved past its margin (77 samples at 512^2 and 64 iterations), counted as NaN/Inf.
