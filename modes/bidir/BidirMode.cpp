@@ -91,6 +91,9 @@ std::vector<ParamSpec> BidirMode::parameters() {
         {kReprojection, std::string("auto"), "",
          "temporal caches: auto warps into the caches' cameras only for an animated camera; always warps", 0, 0,
          {"auto", "always"}},
+        {kTemporalDepthVariance, 1e-4, "log-depth^2",
+         "2 sigma^2 of the temporal caches' log-depth Gaussian h = exp(-log^2(z/z_c) / (2 sigma^2)) ([TO12s]: 1e-4)",
+         1e-8, 1e4, {}},
         {kFit, std::string("scene"), "",
          "bundle frames around the camera-visible points of the frame ([TO12s] B.1) or the scene's bounding sphere", 0,
          0, {"visible", "scene"}},
@@ -317,6 +320,7 @@ void BidirMode::setUpInterleaving(const Scene& scene, std::uint32_t width, std::
     o.filter = mSettings.getString(kInterleaveFilter) == "on";
     o.temporal = mSettings.getString(kTemporal) == "on";
     o.reproject = scene.camera.animated() || mSettings.getString(kReprojection) == "always";
+    o.twoSigma2 = static_cast<float>(mSettings.getDouble(kTemporalDepthVariance));
     const auto pairs = static_cast<std::uint32_t>(mSettings.getInt(kPairs));
     if (o.n * o.n > pairs) {
         throw Error("bidir: interleave = " + std::to_string(o.n) + " needs pairs_per_frame >= " +

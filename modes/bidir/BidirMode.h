@@ -63,6 +63,7 @@
 //                                   sample sets, reverse reprojection ([TO12s] A.2)
 //   reprojection           auto     auto | always: auto warps into the caches' cameras only when the
 //                                   camera is animated (a static camera's warp is the identity)
+//   temporal_depth_variance 1e-4    2 sigma^2 of the caches' log-depth Gaussian ([TO12s]: 1e-4)
 //
 // Textured albedo: at bundle hits (the payload's UV in the packed texture buffer) and at RSM VPLs
 // (the RSM's G-buffer). Not yet: textures at traced VPLs (vpl_source = traced: the material's
@@ -100,6 +101,7 @@ public:
     static constexpr const char* kInterleaveFilter = "interleave_filter";
     static constexpr const char* kTemporal = "temporal";
     static constexpr const char* kReprojection = "reprojection";
+    static constexpr const char* kTemporalDepthVariance = "temporal_depth_variance";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);

@@ -55,7 +55,7 @@ Interleaving::Interleaving(const vk::Context& ctx, std::uint32_t width, std::uin
 
 bool Interleaving::matches(std::uint32_t width, std::uint32_t height, const InterleaveOptions& o) const {
     return width == mWidth && height == mHeight && o.n == mOptions.n && o.filter == mOptions.filter &&
-           o.temporal == mOptions.temporal;
+           o.temporal == mOptions.temporal && o.twoSigma2 == mOptions.twoSigma2;
 }
 
 void Interleaving::preparePipeline(VkDescriptorSetLayout cameraSetLayout) {
@@ -115,6 +115,7 @@ void Interleaving::recordResolve(VkCommandBuffer cmd, VkDescriptorSet cameraSet,
     push.temporal = mOptions.temporal ? 1u : 0u;
     push.cache = cache;
     push.reproject = mOptions.reproject ? 1u : 0u;
+    push.twoSigma2 = mOptions.twoSigma2;
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     const std::uint32_t scope = timer ? timer->start(cmd, "interleave filter/reconstruct") : 0;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mPipeline.get());

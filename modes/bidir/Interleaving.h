@@ -30,6 +30,7 @@ struct InterleaveOptions {
     bool filter = true;      // geometry-aware blur of the gathered indirect light
     bool temporal = false;   // 2 x 2 sub-pixel caches with reverse reprojection
     bool reproject = true;   // warp into each cache's camera (false: static camera, identity warp)
+    float twoSigma2 = 1e-4f; // 2 sigma^2 of the log-depth Gaussian ([TO12s] Eq. 3)
 };
 
 class Interleaving {

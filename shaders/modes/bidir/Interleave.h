@@ -27,7 +27,8 @@ BL_CONST uint kInterleaveGroupSize = 8u;
 
 // The 2 x 2 sub-pixels of [TO12s] A.2: one indirect-light cache each.
 BL_CONST uint kTemporalCaches = 4u;
-// Their Eq. 3: h = exp(-log^2(z / z_c) / (2 sigma^2)) with 2 sigma^2 = 1e-4 "for all scenes".
+// Their Eq. 3: h = exp(-log^2(z / z_c) / (2 sigma^2)) with 2 sigma^2 = 1e-4 "for all scenes" (the
+// default of the mode's temporal_depth_variance).
 BL_CONST float kTemporalTwoSigma2 = 1e-4f;
 // Geometry-aware blur (the paper gives no weights): normal weight max(0, n.n_q)^8, and a Gaussian
 // in the neighbour's distance from the pixel's tangent plane with scale 1% of the view depth.
@@ -64,7 +65,7 @@ struct InterleavePush {
     uint temporal;     // 1: caches + reconstruction
     uint cache;        // the cache this frame rewrites
     uint reproject;    // 1: warp into each cache's camera; 0: the camera is static (identity warp)
-    uint pad0;
+    float twoSigma2;   // 2 sigma^2 of the log-depth Gaussian
 };
 BL_STATIC_ASSERT(sizeof(InterleavePush) == 32, "InterleavePush layout");
 
@@ -103,9 +104,9 @@ BL_INLINE vec2 blTemporalSubPixel(uint i) {
 BL_INLINE float blTemporalViewDepth(GpuCamera c, vec3 x) { return dot(x - c.position, c.forward); }
 
 // [TO12s] Eq. 3: weight of a cached sample at depth zc for a point at depth z in the cache's view.
-BL_INLINE float blTemporalDepthWeight(float z, float zc) {
+BL_INLINE float blTemporalDepthWeight(float z, float zc, float twoSigma2) {
     float l = log(z / zc);
-    return exp(-l * l / kTemporalTwoSigma2);
+    return exp(-l * l / twoSigma2);
 }
 
 BL_NAMESPACE_END

@@ -97,7 +97,7 @@ void main() {
                 if (!(cached.w > 0.0)) {
                     continue;
                 }
-                float h = blTemporalDepthWeight(zi, cached.w);
+                float h = blTemporalDepthWeight(zi, cached.w, push.twoSigma2);
                 sum1 += h * cached.rgb;
                 sum2 += h * imageLoad(caches, ivec3(q, int(2u * i + 1u))).rgb;
                 weights += h;

@@ -184,11 +184,13 @@ TEST_F(InterleavingExperiment, DISABLED_Temporal) {
                 if (still[i]) d += std::abs(a[i] - p[i]);
             return 100.0 * d / std::max(stillCount, 1.0) / stillMean;
         };
-        for (const std::string config : {"fixed set", "fresh set", "temporal"}) {
+        for (const std::string config : {"fixed set", "fresh set", "temporal", "temporal 2s2=1e-2"}) {
             std::vector<double> nrmseAll, flickerAll, flickerLate;
             for (int run = 0; run < runsPerConfig; ++run) {
                 std::vector<std::string> settings = kBidir;
-                settings.insert(settings.end(), {"interleave=2", std::string("temporal=") + (config == "temporal" ? "on" : "off")});
+                const bool temporal = config.rfind("temporal", 0) == 0;
+                settings.insert(settings.end(), {"interleave=2", std::string("temporal=") + (temporal ? "on" : "off")});
+                if (config == "temporal 2s2=1e-2") settings.push_back("temporal_depth_variance=1e-2");
                 std::unique_ptr<Mode> mode = createMode("bidir", settings);
                 std::vector<double> previous;
                 for (int f = 0; f < frames; ++f) {
