@@ -176,22 +176,25 @@ TEST_F(Atlas, CornellPointLightMatchesReference) {
 // the lobes from surface to surface (the box top throws the light's reflection onto the ceiling,
 // the sphere reflects the room), the final gather shows the lobes toward the eye, the highlight
 // pass the light's own reflection. Against the reference's layers (256 spp); indirect = the
-// reference's indirect1 + indirect2 + rest against the mode's `rest`. Seed 1 at these settings:
-// image mean 0.984 / 0.986 / 0.978, direct 1.011, indirect 0.963 / 0.960 / 0.937, relMSE 0.019.
-// Without the glossy transfer (glossy = gather) the image mean falls to 0.928-0.941 and the
-// indirect to 0.854-0.868; with the lobes off (their albedo only, as before) to 0.870-0.880 and
-// 0.76-0.78: the tolerances (image mean within 5%, indirect within 10%) fail both.
+// reference's indirect1 + indirect2 + rest against the mode's `rest`. Seeds 1 / 2 at these
+// settings: image mean 1.023 / 1.002 / 1.004 and 1.009 / 0.987 / 0.990, indirect 0.96-1.03, direct
+// 1.011 (relMSE 0.014-0.015). At 192 directions the seeds spread twice as far (indirect 0.89-1.01
+// over four), hence 512. Without the glossy transfer (glossy = gather) the image mean falls to
+// 0.941-0.951 and the indirect to 0.873-0.885 (seed 2); without the exchange's glossy store alone
+// (a code mutation, the lights' glossy transfer kept) the indirect is 0.88-0.89 at 192 directions;
+// with the lobes off (their albedo only, as before) the image mean is 0.870-0.880. Tolerances:
+// image mean within 5%, indirect within 8%, direct within 4% (the highlight at 32^2 pixels).
 TEST_F(Atlas, GlossyCornellMatchesReference) {
     Scene s = loadSmall("data/external/cornell-glossy-point.toml", 32);
     const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=192", "view_samples=16"};
-    ImageSet test = run(s, 192, settings)->resolve();
+    ImageSet test = run(s, 512, settings)->resolve();
     EXPECT_EQ(test.nonFiniteSamples, 0u);
     ImageSet reference = bl::test::renderReference(s, 256);
     const auto [all, direct, indirect] = layerMetrics(test, reference, "cornell glossy");
     for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(all.meanRatio[c], 1.0, 0.05) << "channel " << c;
         EXPECT_NEAR(direct.meanRatio[c], 1.0, 0.04) << "channel " << c;
-        EXPECT_NEAR(indirect.meanRatio[c], 1.0, 0.10) << "channel " << c;
+        EXPECT_NEAR(indirect.meanRatio[c], 1.0, 0.08) << "channel " << c;
     }
 }
 
