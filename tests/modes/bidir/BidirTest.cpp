@@ -11,7 +11,10 @@
 // Run time: every configuration is rendered once per seed and cached for the whole suite; the
 // equal-sample comparison reads the same runs at frame 128 (resolve() is non-destructive), and
 // the two-bounce test reads the MIS run's `indirect2` layer.
+#include "gpu/GpuScene.h"
 #include "modes/Registry.h"
+#include "modes/bidir/ReflectiveShadowMap.h"
+#include "modes/bidir/VplSampler.h"
 #include "modes/reference/ReferenceTestSupport.h"
 #include "scene/SceneLoader.h"
 #include "support/TestFiles.h"
@@ -509,3 +512,60 @@ TEST_F(Bidir, TexturedAlbedoAtBundleHitsAndRsmVpls) {
         }
     }
 }
+
+// The RSM's VPLs (vpl_source = rsm) against traced ones (CPU rays, Embree: an independent sampler
+// with an exact first hit): both estimate the same integral at fixed floor points x, the one-bounce
+// light from every directly lit surface without the visibility y - x,
+//   E[ I(omega) f_y f_x cos_y cos_x / (|y - x|^2 p_e(omega) P(l)) ],
+// so any error in the RSM's VPL positions, normals, p_e or intensity shows, and nothing of the
+// rendering does. 262,144 VPLs of each source; a point light (p_e near uniform) and a spot light
+// with a 20-degree smooth edge (the RSM's p_e follows I(omega), the traced one is uniform in the
+// cone: different densities, the same expectation).
+TEST_F(Bidir, RsmVplsEstimateWhatTracedVplsEstimate) {
+    constexpr std::uint32_t kCount = 4096, kRounds = 64;
+    for (const bool spot : {false, true}) {
+        Scene s = cornellPoint();
+        if (spot) {
+            s.lights[0].type = Light::Type::Spot;
+            s.lights[0].direction = glm::normalize(glm::vec3(0.2f, -1.0f, -0.3f));
+            s.lights[0].coneAngleDegrees = 50.0f;
+            s.lights[0].falloffDegrees = 20.0f;
+        }
+        gpu::GpuScene gpuScene(ctx(), s);
+        ReflectiveShadowMap rsm(ctx(), gpuScene, 64);
+        VplSampler traced(s);
+        for (const glm::vec3 x : {glm::vec3(278.0f, 0.5f, 60.0f), glm::vec3(100.0f, 0.5f, 100.0f),
+                                  glm::vec3(450.0f, 0.5f, 30.0f)}) {
+            double sum[2] = {0.0, 0.0}, sum2[2] = {0.0, 0.0};
+            for (std::uint32_t r = 0; r < kRounds; ++r) {
+                const std::vector<shader::BidirVpl> vpls[2] = {rsm.sample(std::uint64_t(r) * kCount, kCount, 9, 0.0, 0.01f, nullptr),
+                                                               traced.sample(std::uint64_t(r) * kCount, kCount, 9, 0.0, 0.01f)};
+                for (int source = 0; source < 2; ++source) {
+                    for (const shader::BidirVpl& v : vpls[source]) {
+                        const glm::vec3 d = x - v.position;
+                        const float r2 = glm::dot(d, d);
+                        const glm::vec3 w = d / std::sqrt(r2);
+                        const float cosY = glm::dot(v.normal, w), cosX = -w.y; // the floor faces +y
+                        if (!v.valid || cosY <= 0.0f || cosX <= 0.0f) continue;
+                        const double c = luminance(v.intensity * v.albedo) * cosY * cosX / (r2 * v.pdfLight);
+                        sum[source] += c;
+                        sum2[source] += c * c;
+                    }
+                }
+            }
+            const double n = double(kCount) * kRounds;
+            double mean[2], sigma[2];
+            for (int source = 0; source < 2; ++source) {
+                mean[source] = sum[source] / n;
+                sigma[source] = std::sqrt(std::max(0.0, sum2[source] / n - mean[source] * mean[source]) / n);
+            }
+            const double combined = std::hypot(sigma[0], sigma[1]);
+            std::printf("%s light, x (%.0f %.0f %.0f): rsm %.5g +- %.2g, traced %.5g +- %.2g (%+.2f%%, %+.1f sigma)\n",
+                        spot ? "spot" : "point", x.x, x.y, x.z, mean[0], sigma[0], mean[1], sigma[1],
+                        100.0 * (mean[0] / mean[1] - 1.0), (mean[0] - mean[1]) / combined);
+            EXPECT_LT(combined, 0.02 * mean[1]) << "too noisy to test";
+            EXPECT_NEAR(mean[0], mean[1], 4.0 * combined) << (spot ? "spot" : "point");
+        }
+    }
+}
+
