@@ -182,7 +182,7 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
     const auto n = mSettings.getInt(kInterleave);
     const bool filter = mSettings.getString(kInterleaveFilter) == "on";
     p.push_back({"split + gather (interleave " + std::to_string(n) + ")", n > 1,
-                 n > 1 ? std::to_string(n * n) + " sub-images of every " + std::to_string(n) + "th pixel, " +
+                 n > 1 ? std::to_string(n * n) + " sub-images (pixels " + std::to_string(n) + " apart in x and y), " +
                              std::to_string(mSettings.getInt(kPairs) / (n * n)) + "+ pairs each"
                        : "interleave = 1"});
     p.push_back({"geometry-aware filter", n > 1 && filter,
