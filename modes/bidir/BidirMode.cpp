@@ -171,7 +171,10 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
                            : "strategy = vpl with bounces = 1 uses no bundle"});
     p.push_back({"evaluate", true, lights ? "direct + one-bounce (" + strategy + ")" +
                                                 (twoBounce ? " + two-bounce" : "") + " at every visible point"
-                                          : "no point/spot light: emitters and environment background only"});
+                                          : f.environment && mSettings.getInt(kEnvironmentBundles) > 0
+                                              ? "no point/spot light: emitters, environment background and direct "
+                                                "environment light by bundles"
+                                              : "no point/spot light: emitters and environment background only"});
     const std::string suppression = mSettings.getString(kSuppression);
     const bool suppress = suppressionRuns(mSettings, f);
     p.push_back({"glossy suppression (" + suppression + ")", suppress,
