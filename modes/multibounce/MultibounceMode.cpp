@@ -5,6 +5,7 @@
 #include "bundle/BundlePool.h"
 #include "bundle/DirectionSampler.h"
 #include "gpu/CameraPass.h"
+#include "gpu/PackedTextures.h"
 #include "gpu/ShadowCubePass.h"
 #include "modes/multibounce/SurfacePoints.h"
 #include "scene/Scene.h"
@@ -53,6 +54,10 @@ std::vector<ParamSpec> MultibounceMode::parameters() {
         {kSplatScale, 2.0, "",
          "imperfect bundles: disc radius in units of sqrt(area / (pi points)); larger: fewer holes, more redundant nodes",
          0.05, 20.0, {}},
+        {kSplatUv, std::string("corners"), "",
+         "imperfect bundles: corners: texture coordinates interpolated over each splat from its corners ([TO12p]); "
+         "centre: the splat's centre texel over the whole splat (for comparison)",
+         0, 0, {"corners", "centre"}},
     };
 }
 
@@ -69,7 +74,8 @@ struct MultibounceMode::Gpu {
     std::unique_ptr<BundlePool> pool;
     std::unique_ptr<DirectionSampler> directions;
     std::unique_ptr<SurfacePoints> points; // imperfect bundles only
-    vk::Buffer noPoints;                   // perfect bundles: the points binding's placeholder
+    vk::Buffer noPoints;                   // perfect bundles: the points and splats bindings' placeholder
+    std::unique_ptr<gpu::PackedTextures> textures;
     vk::Buffer emitters;
     std::uint32_t emitterCount = 0;
     vk::DescriptorSetLayout setLayout;
@@ -95,8 +101,8 @@ std::vector<PlannedPass> MultibounceMode::plan(const Scene& scene) const {
         p.push_back({"surface points", true,
                      k + " x " + n + " points uniform by area over " + std::to_string(f.triangles) +
                          " triangles (a different set per direction), every iteration" +
-                         (f.textured ? "; UVs interpolated, albedo textures looked up per point (one pass per textured material)"
-                                     : "; no textures: UVs not interpolated, no texture pass")});
+                         (f.textured ? "; UVs and their gradients over each splat's plane (texture coordinates at the corners)"
+                                     : "; no textures: UVs not interpolated")});
         p.push_back({"bundle build", true, k + " bundles of " + r + "^2 pixels from " + n +
                                                " point splats each (splat_scale " +
                                                formatValue(mSettings.getDouble(kSplatScale)) +
@@ -118,8 +124,14 @@ std::vector<PlannedPass> MultibounceMode::plan(const Scene& scene) const {
     paths += f.emissiveMeshes ? "; emitters hit (front faces)" : "; no emitters to hit";
     paths += f.environment ? "; environment for escaping paths" : "; no environment: escaping paths end";
     if (f.textured) {
-        paths += imperfect() ? "; textured albedo at every vertex (the points')"
-                             : "; textures only at the first vertex (material albedo beyond)";
+        const double mib = double(gpu::PackedTextures::words(scene)) * 4.0 / (1024.0 * 1024.0);
+        paths += "; textured albedo at every vertex from " + std::to_string(scene.textures.size()) +
+                 " textures packed in one buffer (" + formatValue(mib) + " MiB), bilinear at " +
+                 (!imperfect() ? std::string("the bundle payload's UV")
+                               : mSettings.getString(kSplatUv) == "centre" ? std::string("each splat's centre UV")
+                                                                          : std::string("the UV over each splat (from its corners)"));
+    } else {
+        paths += "; no textures: no texture lookups (packed texture buffer holds the decode table only)";
     }
     p.push_back({"paths", true, paths});
     return p;
@@ -172,6 +184,8 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
                                  vk::MemoryUse::Device);
     }
 
+    g->textures = std::make_unique<gpu::PackedTextures>(*ctx, scene);
+
     std::vector<shader::MultibounceEmitter> emitters;
     for (const gpu::GpuDraw& d : g->scene->draws()) {
         emitters.push_back({scene.meshes[d.mesh].emission, d.firstIndex / 3});
@@ -186,8 +200,10 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
         device, {{shader::kMultibounceBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                  {shader::kMultibounceBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
                  {shader::kMultibounceBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kMultibounceBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
-    g->descriptorPool = vk::DescriptorPool(device, 1, 3);
+                 {shader::kMultibounceBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kMultibounceBindingSplats, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kMultibounceBindingTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
+    g->descriptorPool = vk::DescriptorPool(device, 1, 6);
     g->set = g->descriptorPool.allocate(g->setLayout.get());
     vk::DescriptorWriter()
         .buffer(shader::kMultibounceBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
@@ -196,6 +212,9 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
         .buffer(shader::kMultibounceBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->emitters.get())
         .buffer(shader::kMultibounceBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                 g->points ? g->points->pointBuffer() : g->noPoints.get())
+        .buffer(shader::kMultibounceBindingSplats, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                g->points ? g->points->splatBuffer() : g->noPoints.get())
+        .buffer(shader::kMultibounceBindingTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->textures->buffer())
         .update(device, g->set);
     VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
     g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::MultibouncePush), cs);
@@ -279,7 +298,9 @@ void MultibounceMode::iterate(const IterationInfo& info) {
     push.lightCount = g.shadows->lightCount();
     push.shadowResolution = g.shadows->resolution();
     push.emitterCount = g.emitterCount;
-    push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
+    push.flags = (g.scene->environmentPresent() ? shader::kMultibounceEnvironment : 0u) |
+                 (g.scene->features().textured ? shader::kMultibounceTextured : 0u) |
+                 (mSettings.getString(kSplatUv) == "centre" ? shader::kMultibounceSplatCentreUv : 0u);
     push.environmentRotation = g.scene->environmentRotation();
     push.maxSegments = static_cast<std::uint32_t>(mSettings.getInt(kMaxSegments));
     push.rrSegments = static_cast<std::uint32_t>(mSettings.getInt(kRrSegments));

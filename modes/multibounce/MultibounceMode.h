@@ -29,10 +29,11 @@
 // point's shading normal, material and triangle (emission). Holes let light leak through surfaces
 // and overlapping discs add redundant nodes (the trade-off over splat_scale: README).
 //
-// Textured albedo: imperfect bundles' points look their material's texture up at their UV (one
-// pass per textured material, SurfacePoints), so it survives at every vertex. Perfect bundles: not
-// yet beyond the camera's first vertex (the payload carries the UV, but the path pass has no texture
-// table: that needs descriptor indexing, which the core device does not enable).
+// Textured albedo at every vertex: the path pass reads all of the scene's albedo textures from one
+// storage buffer (gpu::PackedTextures: no descriptor indexing, which the core device does not
+// enable), bilinearly as the reference does, at the bundle payload's UV (perfect bundles) or at the
+// UV a splat carries where the path meets it (imperfect bundles: the poster's texture coordinates
+// at each splat corner, stored per point as the UV at the centre and its world-space gradient).
 //
 // Parameters (`bundlelab modes`):
 //   bundle_count       64      bundles       resident bundles per iteration (K)
@@ -47,6 +48,8 @@
 //   bundles            perfect               perfect (the scene's triangles) or imperfect (point splats)
 //   points             16384   points        imperfect: points per direction (a different set each)
 //   splat_scale        2.0                   imperfect: disc radius in units of sqrt(A / (pi N))
+//   splat_uv           corners               imperfect: corners (UV interpolated over the splat) or
+//                                            centre (the splat's centre texel everywhere, for comparison)
 #pragma once
 
 #include "modes/Mode.h"
@@ -69,6 +72,7 @@ public:
     static constexpr const char* kBundles = "bundles";
     static constexpr const char* kPoints = "points";
     static constexpr const char* kSplatScale = "splat_scale";
+    static constexpr const char* kSplatUv = "splat_uv";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);

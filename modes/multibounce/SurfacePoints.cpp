@@ -8,7 +8,6 @@
 #include <glm/gtc/constants.hpp>
 #include <modes/multibounce/MultibounceShared.h>
 #include <modes/multibounce/points.comp.spv.h>
-#include <modes/multibounce/points_texture.comp.spv.h>
 #include <numeric>
 
 namespace bl {
@@ -85,8 +84,7 @@ SurfacePoints::SurfacePoints(const vk::Context& ctx, const gpu::GpuScene& scene,
                                                       {shader::kMultibouncePointsBindingIndices, sb, cs},
                                                       {shader::kMultibouncePointsBindingPlanes, sb, cs},
                                                       {shader::kMultibouncePointsBindingSplats, sb, cs},
-                                                      {shader::kMultibouncePointsBindingPoints, sb, cs},
-                                                      {shader::kMultibouncePointsBindingMaterials, sb, cs}});
+                                                      {shader::kMultibouncePointsBindingPoints, sb, cs}});
     mDescriptorPool = vk::DescriptorPool(device, 1, 8);
     mSet = mDescriptorPool.allocate(mSetLayout.get());
     vk::DescriptorWriter()
@@ -97,34 +95,10 @@ SurfacePoints::SurfacePoints(const vk::Context& ctx, const gpu::GpuScene& scene,
         .buffer(shader::kMultibouncePointsBindingPlanes, sb, scene.planeBuffer())
         .buffer(shader::kMultibouncePointsBindingSplats, sb, mSplats.get())
         .buffer(shader::kMultibouncePointsBindingPoints, sb, mPoints.get())
-        .buffer(shader::kMultibouncePointsBindingMaterials, sb, scene.materialBuffer())
         .update(device, mSet);
     VkDescriptorSetLayout layouts[] = {mSetLayout.get()};
     mLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::MultibouncePointsPush), cs);
     mPipeline = vk::makeComputePipeline(device, kSpv_modes_multibounce_points_comp, mLayout.get());
-
-    std::vector<std::uint32_t> textured;
-    for (std::uint32_t m = 0; m < s.materials.size(); ++m) {
-        if (s.materials[m].albedoTexture >= 0) textured.push_back(m);
-    }
-    if (!textured.empty()) {
-        const VkDescriptorType is = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        mTextureLayout = vk::makeDescriptorSetLayout(device, {{shader::kMultibouncePointsBindingTexture, is, cs}});
-        const auto sets = static_cast<std::uint32_t>(textured.size());
-        mTexturePool = vk::DescriptorPool(device, sets, sets);
-        for (std::uint32_t m : textured) {
-            VkDescriptorSet set = mTexturePool.allocate(mTextureLayout.get());
-            vk::DescriptorWriter()
-                .image(shader::kMultibouncePointsBindingTexture, is, scene.materialTexture(m),
-                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, scene.textureSampler())
-                .update(device, set);
-            mTextureSets.emplace_back(m, set);
-        }
-        VkDescriptorSetLayout both[] = {mSetLayout.get(), mTextureLayout.get()};
-        mTextureLayoutPipeline = vk::makePipelineLayout(device, both, sizeof(shader::MultibouncePointsPush), cs);
-        mTexturePipeline =
-            vk::makeComputePipeline(device, kSpv_modes_multibounce_points_texture_comp, mTextureLayoutPipeline.get());
-    }
 }
 
 void SurfacePoints::record(VkCommandBuffer cmd, std::uint32_t seed, std::uint32_t iteration, double time,
@@ -151,19 +125,6 @@ void SurfacePoints::record(VkCommandBuffer cmd, std::uint32_t seed, std::uint32_
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mLayout.get(), 0, 1, &mSet, 0, nullptr);
     vkCmdPushConstants(cmd, mLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     vkCmdDispatch(cmd, rowGroups, vk::groupCount(groups, rowGroups), 1);
-    if (!mTextureSets.empty()) {
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mTexturePipeline.get());
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mTextureLayoutPipeline.get(), 0, 1, &mSet, 0, nullptr);
-        for (const auto& [material, set] : mTextureSets) {
-            // Each dispatch touches only its material's points: no barrier between them.
-            push.textured = material;
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mTextureLayoutPipeline.get(),
-                                    shader::kMultibouncePointsTextureSet, 1, &set, 0, nullptr);
-            vkCmdPushConstants(cmd, mTextureLayoutPipeline.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-            vkCmdDispatch(cmd, rowGroups, vk::groupCount(groups, rowGroups), 1);
-        }
-    }
     if (timer) timer->stop(cmd, scope);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |

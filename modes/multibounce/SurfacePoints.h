@@ -1,8 +1,9 @@
 // Imperfect bundles ([TO12p], EQUATIONS.md section 3): per iteration, a different set of N points
 // per direction, uniform by area over all surfaces, turned into tangent-plane splats for
 // BundlePool::recordBuild (BundleGeometry::pointSplats) plus what a path vertex found on a splat
-// needs (MultibouncePoint: shading normal, triangle, UV, albedo: a textured material's texture looked
-// up at the point's UV by one more pass per textured material).
+// needs (MultibouncePoint: shading normal, triangle, and the UV as a linear function of position in
+// the splat's plane: the poster's texture coordinates at each splat corner, so the path pass looks a
+// textured albedo up where the path meets the splat, not at its centre).
 //
 // Sampling runs on the GPU (points.comp.glsl): a binary search of an area CDF over the scene's
 // triangles (built on the host once, in double: rigid animation keeps areas), then square-root
@@ -21,7 +22,6 @@
 #include "vk/GpuTimer.h"
 #include "vk/Pipeline.h"
 
-#include <utility>
 #include <vector>
 
 namespace bl {
@@ -44,6 +44,7 @@ public:
     // Device address of direction k's BundleSplat array (perDirection() splats).
     VkDeviceAddress splats(std::uint32_t direction) const;
     VkBuffer pointBuffer() const { return mPoints.get(); }
+    VkBuffer splatBuffer() const { return mSplats.get(); }
 
 private:
     const vk::Context* mContext;
@@ -62,12 +63,6 @@ private:
     VkDescriptorSet mSet = VK_NULL_HANDLE;
     vk::PipelineLayout mLayout;
     vk::Pipeline mPipeline;
-    // Textured materials: one set each with the texture, and the pass that looks points' albedo up.
-    vk::DescriptorSetLayout mTextureLayout;
-    vk::DescriptorPool mTexturePool;
-    std::vector<std::pair<std::uint32_t, VkDescriptorSet>> mTextureSets; // (material, set)
-    vk::PipelineLayout mTextureLayoutPipeline;
-    vk::Pipeline mTexturePipeline;
 };
 
 } // namespace bl

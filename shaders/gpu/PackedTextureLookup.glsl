@@ -4,6 +4,7 @@
 // Define BL_PACKED_TEXTURES_SET and BL_PACKED_TEXTURES_BINDING before including.
 #ifndef BL_GPU_PACKED_TEXTURE_LOOKUP_GLSL
 #define BL_GPU_PACKED_TEXTURE_LOOKUP_GLSL
+#include "shared/GpuTypes.h"
 #include "shared/PackedTextures.h"
 
 layout(set = BL_PACKED_TEXTURES_SET, binding = BL_PACKED_TEXTURES_BINDING) readonly buffer PackedTextureBlock {
@@ -35,5 +36,14 @@ vec3 blPackedTextureLookup(uint index, vec2 uv) {
     vec3 bottom =
         mix(blPackedTexel(first, width, height, x0, y0 + 1), blPackedTexel(first, width, height, x0 + 1, y0 + 1), t.x);
     return mix(top, bottom, t.y);
+}
+
+// Albedo of material m at OBJ texture coordinates uv (v = 0 at the bottom; image row 0 is the top):
+// its texture where it has one, else its constant albedo.
+vec3 blPackedTextureAlbedo(GpuMaterial m, vec2 uv) {
+    if (m.albedoTexture == kNoTexture) {
+        return m.albedo;
+    }
+    return blPackedTextureLookup(m.albedoTexture, vec2(uv.x, 1.0 - uv.y));
 }
 #endif

@@ -13,6 +13,14 @@ BL_CONST uint kMultibounceBindingLights = 0u;     // storage GpuLight[]
 BL_CONST uint kMultibounceBindingShadowMaps = 1u; // storage image 2D array (r32f), 6 layers per light
 BL_CONST uint kMultibounceBindingEmitters = 2u;   // storage MultibounceEmitter[] (one per draw)
 BL_CONST uint kMultibounceBindingPoints = 3u;     // storage MultibouncePoint[] (imperfect bundles)
+BL_CONST uint kMultibounceBindingSplats = 4u;     // storage BundleSplat[] (imperfect bundles: the centres)
+BL_CONST uint kMultibounceBindingTextures = 5u;   // storage uint[]: packed albedo textures (shared/PackedTextures.h)
+
+// MultibouncePush::flags.
+BL_CONST uint kMultibounceEnvironment = 1u; // the scene has an environment: escaping paths gather it
+BL_CONST uint kMultibounceTextured = 2u;    // some material has an albedo texture: UVs over splats evaluated at the hit
+BL_CONST uint kMultibounceSplatCentreUv = 4u; // imperfect bundles: the UV of the splat's centre for the whole
+                                              // splat (splat_uv = centre, for comparison), not the UV at the hit
 
 // Emission of the triangles of one draw: triangle id t belongs to the last entry with
 // firstTriangle <= t (entries in GpuScene draw order, so firstTriangle ascends). Radiance of the
@@ -32,7 +40,7 @@ struct MultibouncePush {
     uint lightCount;
     uint shadowResolution;     // texels per cube-face side
     uint emitterCount;
-    uint environmentPresent;
+    uint flags;                // kMultibounce* flags above
     float environmentRotation; // radians about +y
     uint maxSegments;          // at most this many segments per path (1 = emitters only)
     uint rrSegments;           // segments before Russian roulette starts
@@ -47,15 +55,20 @@ BL_STATIC_ASSERT(sizeof(MultibouncePush) == 128, "MultibouncePush layout");
 BL_CONST uint kMultibounceGroupSize = 8u;
 
 // Imperfect bundles ([TO12p]): what a path vertex found on a point splat needs beyond the bundle's
-// hit payload, per point (the payload's id is the point's index within its direction's set).
+// hit payload, per point (the payload's id is the point's index within its direction's set). The
+// poster gives each splat corner its texture coordinates; the same linear function of position in
+// the splat's plane is stored as the UV at the centre and its world-space gradient, so
+// uv(x) = uv + (dot(grad u, x - c), dot(grad v, x - c)) at the hit x of a splat centred at c.
 struct MultibouncePoint {
-    uint normal;   // octahedral shading normal (interpolated vertex normals), world space
-    uint triangle; // the triangle the point was sampled on (GpuScene order): its emission
-    vec2 uv;       // material texture coordinates at the point
-    uvec2 albedo;  // linear albedo at the point (texture at uv, else the material's): half floats,
-                   // packHalf2x16(r, g), packHalf2x16(b, 0)
+    uint normal;        // octahedral shading normal (interpolated vertex normals), world space
+    uint triangle;      // the triangle the point was sampled on (GpuScene order): its emission
+    vec2 uv;            // material texture coordinates at the point (0 when no material is textured)
+    uint gradientA;     // world-space UV gradient in half floats: packHalf2x16(du/dx, du/dy),
+    uint gradientB;     // packHalf2x16(du/dz, dv/dx),
+    uint gradientC;     // packHalf2x16(dv/dy, dv/dz)
+    uint pad0;
 };
-BL_STATIC_ASSERT(sizeof(MultibouncePoint) == 24, "MultibouncePoint layout");
+BL_STATIC_ASSERT(sizeof(MultibouncePoint) == 32, "MultibouncePoint layout");
 
 // Point pass: the scene's draws at the iteration's time, for the triangle -> draw search.
 struct MultibounceDraw {
@@ -74,10 +87,6 @@ BL_CONST uint kMultibouncePointsBindingIndices = 3u;  // storage uint[]
 BL_CONST uint kMultibouncePointsBindingPlanes = 4u;   // storage vec4[] (GpuScene planes)
 BL_CONST uint kMultibouncePointsBindingSplats = 5u;   // storage BundleSplat[] (written)
 BL_CONST uint kMultibouncePointsBindingPoints = 6u;   // storage MultibouncePoint[] (written)
-BL_CONST uint kMultibouncePointsBindingMaterials = 7u; // storage GpuMaterial[]
-// Texture pass, set 1: one material's albedo texture.
-BL_CONST uint kMultibouncePointsTextureSet = 1u;
-BL_CONST uint kMultibouncePointsBindingTexture = 0u;  // combined image sampler
 
 struct MultibouncePointsPush {
     uint seed;
@@ -87,8 +96,7 @@ struct MultibouncePointsPush {
     uint triangleCount;
     uint drawCount;
     float radius;       // splat radius, world units
-    uint textured;      // 0: no material has a texture, UVs are not interpolated (left 0)
-                        // texture pass: the material whose points look their albedo up
+    uint textured;      // 0: no material has a texture, UVs and their gradients are not computed (left 0)
 };
 BL_STATIC_ASSERT(sizeof(MultibouncePointsPush) == 32, "MultibouncePointsPush layout");
 BL_CONST uint kMultibouncePointsGroupSize = 64u;

@@ -7,7 +7,9 @@
 // bundle pixel and the next fragment along d in the depth-sorted list: that fragment's hit payload
 // is the next vertex. No ray is traced. At every vertex: emission when the path meets an emitter's
 // front face, point/spot light by cube shadow maps, the environment when the path escapes.
-// Weights are f cos / p_r; Russian roulette after push.rrSegments segments.
+// Weights are f cos / p_r; Russian roulette after push.rrSegments segments. Textured albedo at every
+// vertex from the packed texture buffer (gpu/PackedTextureLookup.glsl: no descriptor indexing),
+// at the payload's UV (perfect bundles) or the splat's UV at the hit (imperfect bundles).
 #include "modes/multibounce/MultibounceShared.h"
 #include "modes/multibounce/DrawSearch.glsl"
 #include "bundle/Traversal.glsl"
@@ -20,6 +22,9 @@
 #define BL_SHADOW_SET kMultibounceSet
 #define BL_SHADOW_BINDING kMultibounceBindingShadowMaps
 #include "gpu/ShadowCubeLookup.glsl"
+#define BL_PACKED_TEXTURES_SET kMultibounceSet
+#define BL_PACKED_TEXTURES_BINDING kMultibounceBindingTextures
+#include "gpu/PackedTextureLookup.glsl"
 
 layout(local_size_x = kMultibounceGroupSize, local_size_y = kMultibounceGroupSize) in;
 
@@ -30,6 +35,7 @@ layout(set = kMultibounceSet, binding = kMultibounceBindingEmitters) readonly bu
 layout(set = kMultibounceSet, binding = kMultibounceBindingPoints) readonly buffer PointBlock {
     MultibouncePoint points[];
 };
+layout(set = kMultibounceSet, binding = kMultibounceBindingSplats) readonly buffer SplatBlock { BundleSplat splats[]; };
 layout(push_constant) uniform PushBlock { MultibouncePush push; };
 
 // Layer of a contribution whose path has `segments` segments (1 = emitted, 2 = direct, ...).
@@ -113,7 +119,7 @@ void tracePath(vec3 x0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 emitted, uin
         uint head = blBundleHead(blBundlePoolHeads(push.pool, k), frame, bundlePixel);
         uint hit = blBundleSortedNearest(nodes, head, depth, side, blBundleOwnSurfaceEpsilon(frame, cosine), frame);
         if (hit == kBundleNil) {
-            if (push.environmentPresent != 0u) {
+            if ((push.flags & kMultibounceEnvironment) != 0u) {
                 layers[layerOf(segments + 1u)] +=
                     throughput * textureLod(environment, blEnvDirectionToUv(d, push.environmentRotation), 0.0).rgb;
             }
@@ -127,18 +133,27 @@ void tracePath(vec3 x0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 emitted, uin
             (float(bundlePixel.y) + 0.5) * frame.pixelSize * frame.axisY + node.depth * frame.direction;
         wo = -d;
         m = materials[payload.material & kBundleHitMaterialMask];
-        albedo = m.albedo; // perfect bundles: textured albedo beyond the first vertex not yet (MultibounceMode.h)
         uint triangle = payload.id;
         uint packedNormal = payload.normal;
+        vec2 uv = payload.uv; // perfect bundles: at the pixel's ray
         if ((payload.material & kBundleHitSplat) != 0u) {
             // Imperfect bundles: a splat of bundle k's point set; its point holds the shading
-            // normal, the albedo (texture at its UV) and the triangle it was sampled on (the
-            // splat's face bit is that triangle's).
-            MultibouncePoint point = points[k * push.pointsPerDirection + payload.id];
+            // normal, the triangle it was sampled on (the splat's face bit is that triangle's) and
+            // the UV as a linear function over the splat's plane: evaluated at the hit x, as if
+            // interpolated from texture coordinates at the splat's corners.
+            uint index = k * push.pointsPerDirection + payload.id;
+            MultibouncePoint point = points[index];
             triangle = point.triangle;
             packedNormal = point.normal;
-            albedo = vec3(unpackHalf2x16(point.albedo.x), unpackHalf2x16(point.albedo.y).x);
+            uv = point.uv;
+            if ((push.flags & (kMultibounceTextured | kMultibounceSplatCentreUv)) == kMultibounceTextured) {
+                vec3 offset = x - splats[index].position;
+                vec2 a = unpackHalf2x16(point.gradientA), b = unpackHalf2x16(point.gradientB),
+                     c = unpackHalf2x16(point.gradientC);
+                uv += vec2(dot(vec3(a, b.x), offset), dot(vec3(b.y, c), offset));
+            }
         }
+        albedo = blPackedTextureAlbedo(m, uv);
         vec3 shading = blUnpackOctahedral(packedNormal);
         n = dot(shading, wo) >= 0.0 ? shading : -shading; // two-sided reflection
         if (blBundleFacesBack(node.next, side)) {
@@ -158,7 +173,7 @@ void main() {
         return;
     }
     if (!blCameraHitSurface(pixel)) {
-        vec3 background = blCameraBackground(pixel, push.samplePosition, push.environmentPresent != 0u,
+        vec3 background = blCameraBackground(pixel, push.samplePosition, (push.flags & kMultibounceEnvironment) != 0u,
                                              push.environmentRotation);
         for (uint s = 0u; s < push.pathsPerPixel; ++s) {
             blAccumulateLayer(pixel, kPathEmitted, background); // every pixel gets pathsPerPixel samples

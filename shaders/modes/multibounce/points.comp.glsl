@@ -6,7 +6,9 @@
 // barycentrics). Each direction's points come from their own random numbers, so every bundle
 // sees a different point set. The point becomes a BundleSplat (disc of push.radius in the
 // triangle's plane, oriented like the triangle's front face so the bundle's face bit matches a
-// triangle build) and a MultibouncePoint (shading normal, triangle for emission, UV, albedo).
+// triangle build) and a MultibouncePoint (shading normal, triangle for emission, the UV at the point
+// and its gradient in world space: the poster's texture coordinates at each splat corner, as one
+// linear function; the path pass looks textures up where a path meets the splat).
 #include "modes/multibounce/MultibounceShared.h"
 #include "modes/multibounce/DrawSearch.glsl"
 #include "shared/GpuTypes.h"
@@ -22,7 +24,6 @@ layout(set = 0, binding = kMultibouncePointsBindingIndices) readonly buffer Inde
 layout(set = 0, binding = kMultibouncePointsBindingPlanes) readonly buffer PlaneBlock { vec4 planes[]; };
 layout(set = 0, binding = kMultibouncePointsBindingSplats) writeonly buffer SplatBlock { BundleSplat splats[]; };
 layout(set = 0, binding = kMultibouncePointsBindingPoints) writeonly buffer PointBlock { MultibouncePoint points[]; };
-layout(set = 0, binding = kMultibouncePointsBindingMaterials) readonly buffer MaterialBlock { GpuMaterial materials[]; };
 layout(push_constant) uniform PushBlock { MultibouncePointsPush push; };
 
 // The first triangle whose inclusive CDF exceeds u (triangles of zero area are never chosen).
@@ -40,6 +41,17 @@ uint triangleOf(float u) {
 }
 
 BL_DEFINE_DRAW_SEARCH(drawOf, draws) // the draw holding a triangle
+
+// Gradient in the plane of the triangle (edges e1, e2 from corner 0) of the linear function that
+// grows by f1 along e1 and f2 along e2; zero for a degenerate triangle.
+vec3 planeGradient(vec3 e1, vec3 e2, float f1, float f2) {
+    float a11 = dot(e1, e1), a12 = dot(e1, e2), a22 = dot(e2, e2);
+    float det = a11 * a22 - a12 * a12;
+    if (!(det > 1e-30 * a11 * a22)) {
+        return vec3(0.0);
+    }
+    return ((a22 * f1 - a12 * f2) * e1 + (a11 * f2 - a12 * f1) * e2) / det;
+}
 
 void main() {
     uint index = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * kMultibouncePointsGroupSize) + gl_GlobalInvocationID.x;
@@ -81,12 +93,22 @@ void main() {
     p.normal = blPackOctahedral(dot(shading, shading) > 0.0 ? shading : vec3(0.0, 0.0, 1.0));
     p.triangle = t;
     p.uv = vec2(0.0);
+    p.gradientA = 0u;
+    p.gradientB = 0u;
+    p.gradientC = 0u;
+    p.pad0 = 0u;
     if (push.textured != 0u) {
-        p.uv = b0 * vec2(v0.positionU.w, v0.normalV.w) + b1 * vec2(v1.positionU.w, v1.normalV.w) +
-               b2 * vec2(v2.positionU.w, v2.normalV.w);
+        vec2 uv0 = vec2(v0.positionU.w, v0.normalV.w), uv1 = vec2(v1.positionU.w, v1.normalV.w),
+             uv2 = vec2(v2.positionU.w, v2.normalV.w);
+        p.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
+        // World-space edges (the draw's transform at the bundles' time).
+        vec3 e1 = rotation * (v1.positionU.xyz - v0.positionU.xyz);
+        vec3 e2 = rotation * (v2.positionU.xyz - v0.positionU.xyz);
+        vec3 gu = planeGradient(e1, e2, uv1.x - uv0.x, uv2.x - uv0.x);
+        vec3 gv = planeGradient(e1, e2, uv1.y - uv0.y, uv2.y - uv0.y);
+        p.gradientA = packHalf2x16(gu.xy);
+        p.gradientB = packHalf2x16(vec2(gu.z, gv.x));
+        p.gradientC = packHalf2x16(gv.yz);
     }
-    // The material's albedo; the texture pass (points_texture.comp) replaces it where textured.
-    vec3 albedo = materials[d.material].albedo;
-    p.albedo = uvec2(packHalf2x16(albedo.rg), packHalf2x16(vec2(albedo.b, 0.0)));
     points[index] = p;
 }

@@ -9,6 +9,7 @@
 #include "modes/reference/ReferenceTestSupport.h"
 #include "scene/SceneLoader.h"
 #include "support/TestFiles.h"
+#include "support/TexturedScenes.h"
 #include "support/VulkanTest.h"
 
 #include <cstdio>
@@ -122,45 +123,93 @@ TEST_F(Multibounce, CornellPointLightImperfectBundlesMatchReference) {
     EXPECT_LT(all.blockRatios.rms, 0.12);
 }
 
-// Textured albedo survives on imperfect bundles: the point-lit box's floor gets a texture, red
-// where u < 1/2 and green beyond, u running across the floor; the reference looks it up at every
-// vertex, imperfect bundles at each point's UV. The floor's untextured white would put indirect1's
-// blue channel far off (the texture has almost no blue); perfect bundles, which use the material
-// albedo beyond the first vertex, show by how much.
+namespace {
+
+// The point-lit box, its floor red where u < 1/2 and green beyond (almost no blue): the floor's
+// untextured white would put indirect1's blue channel far off.
+Scene redGreenFloorBox(int resolution) {
+    Scene s = loadSmall("data/cornell-box/cornell-point.toml", resolution);
+    EXPECT_TRUE(bl::test::texturePlanar(s, "floor", bl::test::redGreenTexture())) << "no floor mesh";
+    return s;
+}
+
+} // namespace
+
+// Textured albedo survives on imperfect bundles: the red/green floor; the reference looks the texture
+// up at every vertex, imperfect bundles at the UV over each splat where a path meets it.
 TEST_F(Multibounce, ImperfectBundlesKeepTexturedAlbedo) {
-    Scene s = loadSmall("data/cornell-box/cornell-point.toml", 32);
-    Rgba8Image texture{64, 2, std::vector<unsigned char>(64 * 2 * 4, 255)};
-    for (int y = 0; y < 2; ++y) {
-        for (int x = 0; x < 64; ++x) {
-            unsigned char* t = &texture.texels[std::size_t(4 * (y * 64 + x))];
-            t[0] = x < 32 ? 230 : 60;
-            t[1] = x < 32 ? 60 : 230;
-            t[2] = 20;
-        }
-    }
-    s.textures.push_back({"red-green", texture});
-    bool found = false;
-    for (Mesh& m : s.meshes) {
-        if (m.name.find("floor") == std::string::npos) continue;
-        found = true;
-        Material textured = s.materials[m.material];
-        textured.albedoTexture = int(s.textures.size()) - 1;
-        s.materials.push_back(textured);
-        m.material = std::uint32_t(s.materials.size() - 1);
-        float lo = 1e30f, hi = -1e30f;
-        for (const glm::vec3& p : m.positions) lo = std::min(lo, p.x), hi = std::max(hi, p.x);
-        m.uvs.clear();
-        for (const glm::vec3& p : m.positions) m.uvs.emplace_back((p.x - lo) / (hi - lo), 0.5f);
-    }
-    ASSERT_TRUE(found) << "no floor mesh";
+    Scene s = redGreenFloorBox(32);
     ImageSet reference = bl::test::renderReference(s, 1024);
     ImageSet test = render(s, 8, {"paths_per_pixel=32", "bundle_count=16", "bundles=imperfect"});
     ImageMetrics indirect1 = compareLayer(test, reference, "indirect1");
-    // Five seeds: indirect1 0.971 +- 0.012 (red), 0.974 +- 0.021 (green), 0.993 +- 0.030 (blue: the
-    // smallest signal); the leak bias of splat_scale 2 as on the untextured box. The floor's white
-    // material instead (perfect bundles, or no texture pass): 1.08 / 1.04 / 1.17.
+    // Five seeds: indirect1 0.971 +- 0.012 (red), 0.974 +- 0.020 (green), 0.993 +- 0.031 (blue: the
+    // smallest signal), the same as with one texel per splat (this texture is far coarser than the
+    // splats); the leak bias of splat_scale 2 as on the untextured box. The floor's white material
+    // instead: 1.02-1.08 / 1.00-1.04 / 1.11-1.17.
     for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(indirect1.meanRatio[c], 0.975, 0.065) << "indirect1, channel " << c;
+    }
+}
+
+// Textured albedo beyond the camera's first vertex with perfect bundles: every vertex looks the
+// floor's texture up at the bundle payload's UV in the packed texture buffer.
+TEST_F(Multibounce, PerfectBundlesKeepTexturedAlbedo) {
+    Scene s = redGreenFloorBox(32);
+    ImageSet reference = bl::test::renderReference(s, 1024);
+    ImageSet test = render(s, 16, {"paths_per_pixel=16"});
+    ImageMetrics indirect1 = compareLayer(test, reference, "indirect1");
+    // Five seeds: indirect1 0.991 +- 0.012 (red), 0.982 +- 0.010 (green), 0.984 +- 0.015 (blue), the
+    // bundle-resolution bias of the untextured box; bounds about four of those deviations. 16^2-block
+    // ratio RMS 0.019 to 0.030. The floor's untextured white beyond the first vertex (as before the
+    // packed texture buffer) gives block RMS 0.082 (the red and green halves light the walls and
+    // blocks beside them) and blue 1.053.
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(indirect1.meanRatio[c], 0.985, 0.055) << "indirect1, channel " << c;
+    }
+    EXPECT_LT(indirect1.blockRatios.rms, 0.05);
+}
+
+// Texture detail below the splat size ([TO12p]: texture coordinates at each splat corner). The
+// point light hangs 20 mm above the floor between the blocks and the back wall, over a black disc of radius 30 mm in a white
+// floor texture: 44% of the floor's irradiance falls on the disc. Splats of 1024 points per
+// direction have radius 47 mm, larger than the disc, so the texel at a splat's centre (splat_uv =
+// centre) blurs the disc away where the light is brightest and returns far too much light from the
+// floor; the UV interpolated over the splat (corners) keeps the disc.
+TEST_F(Multibounce, SplatCornerUvsKeepTextureDetailBelowTheSplatSize) {
+    Scene s = loadSmall("data/cornell-box/cornell-point.toml", 32);
+    constexpr int kSide = 256;
+    Rgba8Image texture{kSide, kSide, std::vector<unsigned char>(kSide * kSide * 4, 255)};
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const Mesh& m : s.meshes) {
+        if (m.name.find("floor") == std::string::npos) continue;
+        for (const glm::vec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    }
+    const glm::vec2 foot(lo.x + 140.0f, lo.z + 420.0f); // 140 mm or more from the walls and blocks
+    for (int y = 0; y < kSide; ++y) {
+        for (int x = 0; x < kSide; ++x) {
+            // Texel centre on the floor (row 0 is v = 1: OBJ coordinates run upward).
+            const glm::vec2 at(lo.x + (x + 0.5f) / kSide * (hi.x - lo.x), lo.z + (1.0f - (y + 0.5f) / kSide) * (hi.z - lo.z));
+            unsigned char* t = &texture.texels[std::size_t(4 * (y * kSide + x))];
+            const unsigned char value = glm::length(at - foot) < 30.0f ? 0 : 220;
+            t[0] = t[1] = t[2] = value;
+        }
+    }
+    ASSERT_TRUE(bl::test::texturePlanar(s, "floor", texture)) << "no floor mesh";
+    s.lights.at(0).position = glm::vec3(foot.x, lo.y + 20.0f, foot.y);
+    ImageSet reference = bl::test::renderReference(s, 1024);
+    const std::vector<std::string> common{"paths_per_pixel=32", "bundle_count=16", "bundles=imperfect", "points=1024"};
+    std::vector<std::string> corners = common, centre = common;
+    corners.push_back("splat_uv=corners");
+    centre.push_back("splat_uv=centre");
+    ImageMetrics withCorners = compareLayer(render(s, 8, corners), reference, "indirect1");
+    ImageMetrics withCentre = compareLayer(render(s, 8, centre), reference, "indirect1");
+    // Five seeds: corners 0.934 +- 0.029 (red; green 0.946, blue 0.951: the leaks and edge shadows
+    // of these large splats), centre 1.165 +- 0.065; with the same seed both see the same points
+    // and directions, and centre / corners is 1.19 to 1.28. Corners within four deviations of its
+    // mean; centre at least 10% above it.
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(withCorners.meanRatio[c], 0.94, 0.115) << "corners, channel " << c;
+        EXPECT_GT(withCentre.meanRatio[c] / withCorners.meanRatio[c], 1.1) << "centre / corners, channel " << c;
     }
 }
 
@@ -258,6 +307,42 @@ TEST_F(Multibounce, PlanSkipsUnusedPassesAndTheImageIsUnchanged) {
     std::size_t differ = 0;
     for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i] ? 1 : 0;
     EXPECT_EQ(differ, 0u) << "pixels changed by the skipped shadow pass";
+}
+
+// The other two skips: with no environment escaping paths end, with no textures no UV, gradient or
+// texture work is done. Doing that work for an environment of zero radiance and for a white
+// texture (one texel of sRGB 255, i.e. 1.0 exactly) on a material of albedo 1 gives the same image
+// bit for bit, perfect and imperfect bundles, while the plan says the work runs.
+TEST_F(Multibounce, PlanSkipsEnvironmentAndTextureWorkAndTheImageIsUnchanged) {
+    Scene s = loadSmall("data/cornell-box/cornell.toml", 16);
+    for (Material& m : s.materials) m.albedo = glm::vec3(1.0f);
+    Scene full = s;
+    full.environment.present = true;
+    full.environment.radiance = glm::vec3(0.0f);
+    full.textures.push_back({"white", Rgba8Image{1, 1, std::vector<unsigned char>(4, 255)}});
+    for (Material& m : full.materials) m.albedoTexture = 0;
+    for (Mesh& m : full.meshes) m.uvs.assign(m.positions.size(), glm::vec2(0.25f, 0.75f));
+    for (const char* bundles : {"bundles=perfect", "bundles=imperfect"}) {
+        const std::vector<std::string> settings{bundles, "bundle_count=8", "points=4096", "paths_per_pixel=2"};
+        auto planOf = [&](const Scene& scene) {
+            std::string text;
+            for (const PlannedPass& p : createMode("multibounce", settings)->plan(scene)) text += p.name + ": " + p.reason + "\n";
+            return text;
+        };
+        const std::string skipped = planOf(s), done = planOf(full);
+        std::printf("%s\n%s", skipped.c_str(), done.c_str());
+        EXPECT_NE(skipped.find("no environment: escaping paths end"), std::string::npos) << skipped;
+        EXPECT_NE(skipped.find("no textures: no texture lookups"), std::string::npos) << skipped;
+        EXPECT_NE(done.find("environment for escaping paths"), std::string::npos) << done;
+        EXPECT_NE(done.find("textured albedo at every vertex"), std::string::npos) << done;
+        const ImageSet without = render(s, 2, settings), with = render(full, 2, settings);
+        const auto& a = without.radiance().pixels();
+        const auto& b = with.radiance().pixels();
+        ASSERT_EQ(a.size(), b.size());
+        std::size_t differ = 0;
+        for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i] ? 1 : 0;
+        EXPECT_EQ(differ, 0u) << bundles << ": pixels changed by the skipped environment and texture work";
+    }
 }
 
 // Point sets no storage binding can hold are refused with the number of directions that fit (1024
