@@ -4,6 +4,8 @@
 # code, the JSON record's non-finite sample count and `bundlelab stats` (no NaN/Inf in any layer),
 # and prints one table row per run with the wall time and the passes' ms.
 # Usage: experiments/multibounce/every-scene.sh BUILD_DIR [OUT_DIR] [extra --set key=value ...]
+# DEFAULTS=1 in the environment keeps the mode's default bundle settings (64 bundles of 128^2, 16384
+# points) instead of the small ones (8 bundles of 64^2, 4096 points).
 set -uo pipefail
 build=${1:?build dir}
 out=${2:-/tmp/multibounce-every-scene}
@@ -18,9 +20,10 @@ for scene in $scenes; do
     for kind in perfect imperfect; do
         name=$(echo "$scene" | tr '/.' '__')-$kind
         log="$out/$name.log"
+        small=(--set bundle_count=8 --set bundle_resolution=64 --set points=4096)
+        [[ "${DEFAULTS:-0}" == 1 ]] && small=()
         (cd "$root" && timeout 300 "$bin" render "$scene" -m multibounce --width 32 --height 24 --iterations 2 \
-            --set bundle_count=8 --set bundle_resolution=64 --set points=4096 --set bundles=$kind "$@" \
-            -o "$out/$name.exr") >"$log" 2>&1
+            "${small[@]}" --set bundles=$kind "$@" -o "$out/$name.exr") >"$log" 2>&1
         rc=$?
         nonfinite=-; wall=-; build_ms=-; paths_ms=-; note=""
         if [[ $rc -eq 0 ]]; then
