@@ -15,6 +15,8 @@
 #include <modes/multibounce/MultibounceShared.h>
 #include <modes/multibounce/paths.comp.spv.h>
 
+#include <cstdio>
+
 namespace bl {
 
 namespace {
@@ -124,9 +126,10 @@ std::vector<PlannedPass> MultibounceMode::plan(const Scene& scene) const {
     paths += f.emissiveMeshes ? "; emitters hit (front faces)" : "; no emitters to hit";
     paths += f.environment ? "; environment for escaping paths" : "; no environment: escaping paths end";
     if (f.textured) {
-        const double mib = double(gpu::PackedTextures::words(scene)) * 4.0 / (1024.0 * 1024.0);
+        char mib[32];
+        std::snprintf(mib, sizeof(mib), "%.1f", double(gpu::PackedTextures::words(scene)) * 4.0 / kMiB);
         paths += "; textured albedo at every vertex from " + std::to_string(scene.textures.size()) +
-                 " textures packed in one buffer (" + formatValue(mib) + " MiB), bilinear at " +
+                 " textures packed in one buffer (" + mib + " MiB), bilinear at " +
                  (!imperfect() ? std::string("the bundle payload's UV")
                                : mSettings.getString(kSplatUv) == "centre" ? std::string("each splat's centre UV")
                                                                           : std::string("the UV over each splat (from its corners)"));
