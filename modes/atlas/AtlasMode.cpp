@@ -27,6 +27,8 @@
 #include <modes/atlas/update.comp.spv.h>
 #include <shared/Random.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -42,6 +44,14 @@ constexpr std::uint64_t kInitialNodesPerPixel = 4;
 // numbers (DirectionSampler) by distinct hash keys.
 constexpr std::uint32_t kGridKeyX = 0x68e31da4u;
 constexpr std::uint32_t kGridKeyY = 0xb5297a4du;
+// Glossy transfer with Halton directions: the sequence is taken in a shuffled order within blocks
+// of kShuffleBlock indices (key kShuffleKey). The transfer pairs each direction with the next, and
+// consecutive Halton points (bases 5 and 7) sit at nearly fixed offsets from each other, which
+// biased the lobes' light locally (the glossy Cornell box's left wall top +30%, measured); after
+// the shuffle the next direction is any point of the block, and every full block is the Halton
+// prefix again.
+constexpr std::uint32_t kShuffleBlock = 64;
+constexpr std::uint32_t kShuffleKey = 0x2545f491u;
 // Device bytes per texel: texel table (32), sender (2 x 16), received and glossy transfer (2 x 32),
 // sums (2 x 32), direct (2 x 16), settled (2 x 16), chart (4).
 constexpr VkDeviceSize kBytesPerTexel = 32 + 32 + 64 + 64 + 32 + 32 + 4;
@@ -136,7 +146,8 @@ struct AtlasMode::Gpu {
     vk::Buffer direction; // AtlasDirection, host-written before each direction's submission
     // Glossy materials (interleaved transfer only): the glossy transfer atlas rides in `received`;
     // the final gather's per-pixel sums and the view sample's point-light highlight per pixel.
-    bool glossy = false, glossyTransfer = false;
+    bool glossy = false, glossyTransfer = false, shuffleDirections = false;
+    std::uint32_t directionSeed = 0;
     vk::Buffer materials, gathered, highlight;
     vk::PipelineLayout exchangeLayout, updateLayout, shadeLayout, directLayout, gatherLayout, highlightLayout;
     vk::Pipeline exchange, update, shade, direct, gather, highlightPipeline;
@@ -259,7 +270,8 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
                                               VkDeviceSize(g->texelCount) * (lightSamples * lightSamples * 32 + 4);
     ctx->requireDeviceMemory(VkDeviceSize(g->texelCount) * kBytesPerTexel + lightBytes +
                                  VkDeviceSize(width) * height *
-                                     (gpu::CameraPass::bytesPerPixel(shader::kAtlasAccumLayers) + 16 + 4),
+                                     (gpu::CameraPass::bytesPerPixel(shader::kAtlasAccumLayers) + 16 + 4 +
+                                      (scene.features().glossy ? 32 : 0)), // glossy gather + highlight
                              "atlas with " + std::to_string(g->texelCount) + " texels");
 
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene, &link);
@@ -343,6 +355,13 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->materials = vk::makeBuffer(*ctx, std::span<const shader::GpuMaterial>(materials), kStorage);
     g->glossy = scene.features().glossy && !bounce() && mSettings.getString(kGlossy) != "off";
     g->glossyTransfer = g->glossy && mSettings.getString(kGlossy) == "transfer";
+    // The shuffled direction order only where a mesh carries a glossy lobe: with none hit, the
+    // transfer adds nothing and the directions stay those of the diffuse mode.
+    const auto glossyMesh = [&](const Mesh& m) {
+        return m.material < scene.materials.size() && scene.materials[m.material].glossy();
+    };
+    g->shuffleDirections =
+        g->glossyTransfer && std::any_of(scene.meshes.begin(), scene.meshes.end(), glossyMesh);
     if (g->glossy) {
         const std::vector<glm::vec4> pixels(std::size_t(width) * height);
         g->gathered = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
@@ -371,7 +390,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
 void AtlasMode::buildBundle(const IterationInfo& info) {
     Gpu& g = *mGpu;
     const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
-    const BundleDirection dir = g.directions->sample(mIterations);
+    const BundleDirection dir = g.directions->sample(directionIndex(mIterations));
     // A frame of R + 1 pixels of the R-pixel frame's size (radius scaled by (R + 1) / R), shifted
     // by a random sub-pixel offset in [-1/2, 1/2) pixel each way: it still covers the bounding
     // sphere, and every surface point's ray is uniformly placed within its pixel over directions
@@ -394,7 +413,7 @@ void AtlasMode::buildBundle(const IterationInfo& info) {
     params.weight = frame.pixelSize * frame.pixelSize / (shader::kPi * density);
     params.inverseDensity = 1.0f / density;
     params.glossy = g.glossyTransfer ? 1u : 0u;
-    params.next = g.directions->sample(mIterations + 1).omega;
+    params.next = g.directions->sample(directionIndex(mIterations + 1)).omega;
     std::memcpy(g.direction.data(), &params, sizeof(params));
 
     for (;;) {
@@ -482,6 +501,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
     }
     if (!g.directions) {
         // The seed decorrelates runs; directions are reproducible from (settings, seed).
+        g.directionSeed = static_cast<std::uint32_t>(info.seed);
         g.directions = std::make_unique<DirectionSampler>(
             sequenceOf(mSettings.getString(kDirections)), static_cast<std::uint32_t>(info.seed),
             static_cast<std::uint32_t>(mSettings.getInt(kStrata)), g.importance.get(),
@@ -568,7 +588,7 @@ void AtlasMode::recordGlossyLights(VkCommandBuffer cmd) {
     Gpu& g = *mGpu;
     shader::AtlasDirectPush push = directPush();
     push.received = addressOf(*mContext, g.received);
-    push.next = g.directions->sample(mIterations + 1).omega;
+    push.next = g.directions->sample(directionIndex(mIterations + 1)).omega;
     push.glossy = 1u;
     push.materials = addressOf(*mContext, g.materials);
     const std::uint32_t scope = g.timer.start(cmd, "glossy lights");
@@ -715,6 +735,21 @@ AtlasMode::TexelRadiance AtlasMode::readTexels() const {
         out.area.push_back(t.inverseArea > 0.0f ? 1.0f / t.inverseArea : 0.0f);
     }
     return out;
+}
+
+std::uint32_t AtlasMode::directionIndex(std::uint32_t i) const {
+    const Gpu& g = *mGpu;
+    if (!g.shuffleDirections || sequenceOf(mSettings.getString(kDirections)) != DirectionSequence::Halton) {
+        return i;
+    }
+    const std::uint32_t block = i / kShuffleBlock;
+    std::array<std::uint32_t, kShuffleBlock> order;
+    for (std::uint32_t k = 0; k < kShuffleBlock; ++k) order[k] = k;
+    for (std::uint32_t k = kShuffleBlock - 1; k > 0; --k) { // Fisher-Yates, keyed by seed and block
+        const float u = shader::blHashRandom(g.directionSeed ^ kShuffleKey, block * kShuffleBlock + k);
+        std::swap(order[k], order[std::min(k, std::uint32_t(u * float(k + 1)))]);
+    }
+    return block * kShuffleBlock + order[i % kShuffleBlock];
 }
 
 bool AtlasMode::bounce() const { return mSettings.getString(kTransfer) == "bounce"; }

@@ -50,8 +50,9 @@
 // Lambert estimator with rho / pi replaced by the lobe); the update adds it to the sender of
 // direction i + 1 only. Averaged over directions this is an unbiased one-sample estimate of the
 // lobe's outgoing radiance toward omega_{i+1} whenever omega_i is distributed independently of
-// omega_{i+1}, and it includes what reached the texel glossily at i - 1: paths through any number
-// of glossy surfaces. Point/spot light reaches the glossy transfer atlas by the direct pass's
+// omega_{i+1} (hence Halton directions are taken in a shuffled order within blocks: directionIndex),
+// and it includes what reached the texel glossily at i - 1: paths through any number of glossy
+// surfaces. Point/spot light reaches the glossy transfer atlas by the direct pass's
 // sample points (their lobes toward omega_{i+1}). Final glossy gather toward the eye: per
 // direction, a jittered camera G-buffer; each glossy pixel p takes the neighbour fragment of its
 // bundle list along the direction on its side and adds L_sender f_glossy(p, d, eye) cos / p_r,
@@ -139,6 +140,9 @@ private:
     shader::AtlasDirectPush directPush() const;
     void recordGather(VkCommandBuffer cmd, double weight);
     void recordHighlight(VkCommandBuffer cmd);
+    // The sampler index of the i-th direction processed (shuffled in blocks for the glossy transfer
+    // with Halton directions, else i).
+    std::uint32_t directionIndex(std::uint32_t i) const;
     bool bounce() const; // transfer = bounce
     // 1, or 0 where max_segments = 1 leaves out all reflected light (the direct atlas included).
     float directScale() const;

@@ -176,14 +176,15 @@ TEST_F(Atlas, CornellPointLightMatchesReference) {
 // the lobes from surface to surface (the box top throws the light's reflection onto the ceiling,
 // the sphere reflects the room), the final gather shows the lobes toward the eye, the highlight
 // pass the light's own reflection. Against the reference's layers (256 spp); indirect = the
-// reference's indirect1 + indirect2 + rest against the mode's `rest`. Seeds 1 / 2 at these
-// settings: image mean 1.023 / 1.002 / 1.004 and 1.009 / 0.987 / 0.990, indirect 0.96-1.03, direct
-// 1.011 (relMSE 0.014-0.015). At 192 directions the seeds spread twice as far (indirect 0.89-1.01
-// over four), hence 512. Without the glossy transfer (glossy = gather) the image mean falls to
-// 0.941-0.951 and the indirect to 0.873-0.885 (seed 2); without the exchange's glossy store alone
-// (a code mutation, the lights' glossy transfer kept) the indirect is 0.88-0.89 at 192 directions;
-// with the lobes off (their albedo only, as before) the image mean is 0.870-0.880. Tolerances:
-// image mean within 5%, indirect within 8%, direct within 4% (the highlight at 32^2 pixels).
+// reference's indirect1 + indirect2 + rest against the mode's `rest`. Seeds 1 / 2 / 3 at these
+// settings: image mean 0.997-1.010 / 1.003-1.007 / 0.980-0.993, direct 1.011 (the highlight at
+// 32^2), indirect 0.981-1.009 / 0.995-1.004 / 0.941-0.978 (mean of the channels 0.991 / 0.998 /
+// 0.957), relMSE 0.012-0.014. Without the glossy transfer (glossy = gather) the image mean falls
+// to 0.941-0.951 and the indirect to 0.873-0.885 (channel mean 0.877, seed 2); a mutation dropping
+// only the exchange's glossy store (the lights' glossy transfer kept) gives image mean 0.963-0.974
+// and indirect channel mean 0.924; with the lobes off (their albedo only, as before) the image mean
+// is 0.870-0.880. Tolerances: image mean within 5% per channel, the indirect's channel mean within
+// 6% (seed 3's blue is 5.9% low: per channel the seeds spread too far), direct within 4%.
 TEST_F(Atlas, GlossyCornellMatchesReference) {
     Scene s = loadSmall("data/external/cornell-glossy-point.toml", 32);
     const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=192", "view_samples=16"};
@@ -194,8 +195,8 @@ TEST_F(Atlas, GlossyCornellMatchesReference) {
     for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(all.meanRatio[c], 1.0, 0.05) << "channel " << c;
         EXPECT_NEAR(direct.meanRatio[c], 1.0, 0.04) << "channel " << c;
-        EXPECT_NEAR(indirect.meanRatio[c], 1.0, 0.08) << "channel " << c;
     }
+    EXPECT_NEAR((indirect.meanRatio.x + indirect.meanRatio.y + indirect.meanRatio.z) / 3.0, 1.0, 0.06);
 }
 
 // An HDR environment map (classroom sky, a sun in it) over blocks: each direction's escaping rays
