@@ -177,7 +177,9 @@ protected:
             // An RSM's VPL whose direction left its texel (the rasterizer's sample at the texel's
             // edge; measured 2 of 4096 in one seed): rare, its density taken at its direction.
             for (const auto& [name, value] : out.counters) {
-                if (name == "rsm_texel_mismatches") EXPECT_LE(value, 1e-3 * frames * 8) << key;
+                if (name == "rsm_texel_mismatches") {
+                    EXPECT_LE(value, 1e-3 * frames * 8) << key;
+                }
             }
             r.final1.push_back(regionMeans(bl::test::layerOf(out, "indirect1")));
             r.final2.push_back(regionMeans(bl::test::layerOf(out, "indirect2")));
@@ -438,7 +440,9 @@ TEST_F(Bidir, EnvironmentBundlesConvergeToReferenceDirect) {
         settings.push_back("environment_bundles=" + std::to_string(kEnvironmentBundles));
         std::unique_ptr<Mode> mode = createMode("bidir", settings);
         for (const PlannedPass& p : mode->plan(s)) {
-            if (p.name == "environment bundles") EXPECT_TRUE(p.runs) << p.reason;
+            if (p.name == "environment bundles") {
+                EXPECT_TRUE(p.runs) << p.reason;
+            }
         }
         mode->setScene(s, &ctx());
         for (std::uint32_t f = 0; f < kEnvironmentFrames; ++f) mode->iterate({f, seed + 1, 0.0});
@@ -468,7 +472,9 @@ TEST_F(Bidir, EnvironmentBundlesConvergeToReferenceDirect) {
 
     std::unique_ptr<Mode> off = createMode("bidir", {"environment_bundles=0", "pairs_per_frame=2"});
     for (const PlannedPass& p : off->plan(s)) {
-        if (p.name == "environment bundles") EXPECT_FALSE(p.runs) << p.reason;
+        if (p.name == "environment bundles") {
+            EXPECT_FALSE(p.runs) << p.reason;
+        }
     }
     off->setScene(s, &ctx());
     off->iterate({0, 1, 0.0});
