@@ -19,10 +19,10 @@
 //   memory_cap_mib     1024      bundle node pool limit (beyond: tiles)
 //   visibility         bundle    bundle (omega and -omega for every point) or depth_map (a
 //                                directional shadow map: omega only; the comparison of [TO12])
-//   bundle_backend     raster    raster (graphics pipeline), compute (ComputeBundleRasterizer) or
-//                                auto (compute on GPUs, raster on CPU devices; on lavapipe compute
-//                                wins on dense meshes, raster on Sponza: experiments/bench/results/
-//                                bundles-breakdown-lavapipe-2026-11-23.md)
+//   bundle_backend     auto      raster (graphics pipeline), compute (ComputeBundleRasterizer) or
+//                                auto (compute where the device has shaderInt64: on lavapipe its
+//                                builds are 2.2-2.9x faster on Sponza and the bunny; experiments/
+//                                bench/results/bundles-breakdown-lavapipe-2026-11-23.md)
 //   control_variate    off       on: each sample becomes (albedo/pi) E(n) + [V L_e f (n.d) -
 //                                L_e (albedo/pi) (n.d)] / p(d) with E(n) the unoccluded irradiance
 //                                tabulated once per map (IrradianceTable.h): same mean, and the

@@ -140,7 +140,7 @@ TEST_F(Skylight, TilesUnderAMemoryCapGiveTheSameImage) {
 // so at most a few pixels may differ, and the image mean agrees to 1e-4.
 TEST_F(Skylight, ComputeBackendGivesTheRasterImage) {
     Scene s = loadSmall("data/analytic/ao-blocks.toml", 48);
-    Image raster = render(s, 16, {"bundle_resolution=256"});
+    Image raster = render(s, 16, {"bundle_resolution=256", "bundle_backend=raster"});
     Image compute = render(s, 16, {"bundle_resolution=256", "bundle_backend=compute"});
     std::size_t differing = 0;
     for (std::size_t i = 0; i < raster.pixelCount(); ++i) {
