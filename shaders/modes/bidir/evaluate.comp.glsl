@@ -194,8 +194,7 @@ vec3 bundleTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, ino
     BundleHit payload = BundleHitPayload(push.pool.payload).hits[hit];
     // y on the bundle pixel's centre ray, up to half a pixel beside x's exact ray (the bundle
     // resolution's bias, shrinking with the pixel size).
-    vec3 y = frame.origin + (float(bundlePixel.x) + 0.5) * frame.pixelSize * frame.axisX +
-             (float(bundlePixel.y) + 0.5) * frame.pixelSize * frame.axisY + nodes.nodes[hit].depth * frame.direction;
+    vec3 y = blBundlePixelRay(frame, vec2(bundlePixel) + 0.5) + nodes.nodes[hit].depth * frame.direction;
     vec3 toX = x - y;
     float r2 = dot(toX, toX);
     if (!(r2 > 0.0)) {
@@ -206,7 +205,7 @@ vec3 bundleTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, ino
     vec3 ny = dot(shading, wy) >= 0.0 ? shading : -shading; // two-sided reflection
     float cosY = dot(ny, wy);
     GpuMaterial my = materials[payload.material & kBundleHitMaterialMask];
-    vec3 ay = bidirHitAlbedo(my, payload.uv); // textured
+    vec3 ay = blPackedTextureAlbedo(my, payload.uv); // textured
     float weightX = abs(cosine) / push.hemispherePdf;
     if (push.bounces >= 2u) {
         // Eq. 14 at x for the two-bounce path: d = N p_r (d on the light side is a delta).

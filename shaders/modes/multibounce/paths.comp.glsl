@@ -129,8 +129,7 @@ void tracePath(vec3 x0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 emitted, uin
         BundleHit payload = hits.hits[hit];
         // The next vertex lies on the bundle pixel's centre ray, up to half a pixel beside the
         // exact ray from x: the bundle-resolution bias, which shrinks with the pixel size.
-        x = frame.origin + (float(bundlePixel.x) + 0.5) * frame.pixelSize * frame.axisX +
-            (float(bundlePixel.y) + 0.5) * frame.pixelSize * frame.axisY + node.depth * frame.direction;
+        x = blBundlePixelRay(frame, vec2(bundlePixel) + 0.5) + node.depth * frame.direction;
         wo = -d;
         m = materials[payload.material & kBundleHitMaterialMask];
         uint triangle = payload.id;
