@@ -131,6 +131,9 @@ void main() {
         clipSpanToEdge(v[1], v[2], own0, centreY, half_, first, last);
         clipSpanToEdge(v[2], v[0], own1, centreY, half_, first, last);
         clipSpanToEdge(v[0], v[1], own2, centreY, half_, first, last);
+        if (first > last) {
+            continue; // (the bounds may lie far outside the box here: never cast them)
+        }
         int row = y - int(frame.tileY);
         // Two walks of the span: count the fragments inside the depth range, allocate them at once,
         // then link them (the same float depth both times).
@@ -145,7 +148,9 @@ void main() {
         if (index == kBundleNil) {
             continue;
         }
-        for (int x = int(first); x <= int(last) && index < capacity; ++x) {
+        // Never past the row's own nodes, whatever the second depth evaluation says.
+        uint end = min(index + count, capacity);
+        for (int x = int(first); x <= int(last) && index < end; ++x) {
             int column = x - int(frame.tileX);
             float depth;
             bool front;
