@@ -1,4 +1,4 @@
-#include "modes/atlas/AtlasMode.h"
+#include "modes/atlas/AtlasGpu.h"
 
 #include "atlas/Atlas.h"
 #include "atlas/AtlasLink.h"
@@ -35,6 +35,8 @@
 
 namespace bl {
 
+using atlasmode::addressOf;
+
 namespace {
 constexpr double kMiB = 1024.0 * 1024.0;
 // First pool size in nodes per bundle pixel: closed rooms seen along a direction cross ~2-4
@@ -66,8 +68,6 @@ DirectionSequence sequenceOf(const std::string& name) {
     return DirectionSequence::Halton;
 }
 
-glm::uvec2 addressOf(const vk::Context& ctx, const vk::Buffer& b) { return splitAddress(deviceAddress(ctx, b)); }
-
 // Whether any mesh or light is keyframed (a camera path alone leaves the atlas's solution valid).
 bool movesOverTime(const Scene& scene) {
     for (const Mesh& m : scene.meshes) {
@@ -80,144 +80,11 @@ bool movesOverTime(const Scene& scene) {
 }
 } // namespace
 
-std::vector<ParamSpec> AtlasMode::parameters() {
-    return {
-        {kAtlasResolution, std::int64_t{512}, "texels",
-         "side of an atlas page; the texel density follows from the scene's surface area", 16, 16384, {}},
-        {kBundleResolution, std::int64_t{512}, "pixels", "side of each direction's bundle (frame over the bounding sphere)",
-         8, 8192, {}},
-        {kDirections, std::string("halton"), "",
-         "global directions: uniform on the sphere (Hermes et al.: Halton), or importance = environment luminance + "
-         "offset ([TO12] Eq. 2; every direction is weighted by its density)",
-         0, 0, {"halton", "random", "stratified", "importance"}},
-        {kStrata, std::int64_t{1024}, "directions", "directions per pass of the stratified sequence", 1, 1 << 24, {}},
-        {kImportanceOffset, 1.0, "",
-         "L_o of directions=importance as a fraction of the mean environment luminance: keeps every direction sampled "
-         "for the exchange between surfaces",
-         0.0, 1e6, {}},
-        {kWeighting, 2.0, "",
-         "k: direction j weighs j^k in the estimate, forgetting the first directions' missing bounces (0: plain mean)",
-         0.0, 8.0, {}},
-        {kTransfer, std::string("interleaved"), "",
-         "interleaved: the sender is rewritten after every direction (Hermes et al.'s default); bounce: one pass of "
-         "bounce_directions per bounce, each sending the previous pass's light",
-         0, 0, {"interleaved", "bounce"}},
-        {kBounceDirections, std::int64_t{256}, "directions", "transfer = bounce: directions per pass (bounce)", 1, 1 << 24,
-         {}},
-        {kMaxSegments, std::int64_t{0}, "segments",
-         "transfer = bounce: longest path kept (1 = emitters only, 2 = one reflection, ...; 0: no limit); the last "
-         "pass keeps refining",
-         0, 1 << 16, {}},
-        {kViewSamples, std::int64_t{16}, "samples", "jittered camera samples per pixel when the atlas is viewed (resolve)",
-         1, 4096, {}},
-        {kBilinear, true, "", "bilinear lookups between texel centres inside a chart (else the texel alone)", 0, 0, {}},
-        {kShadowResolution, std::int64_t{512}, "texels", "side of each shadow cube face (point and spot lights)", 16, 8192,
-         {}},
-        {kLightSamples, std::int64_t{2}, "per side",
-         "n: an n x n grid of sample points per texel averages point/spot light over the texel's surface", 1, 16, {}},
-        {kGlossy, std::string("transfer"), "",
-         "glossy lobes: transfer = glossy transfer atlas + final gather toward the eye ([HHGM10] 5.3-5.4); gather = "
-         "toward the eye only (no glossy bounce between surfaces); off = their albedo only (diffuse)",
-         0, 0, {"transfer", "gather", "off"}},
-        {kMemoryCap, std::int64_t{0}, "MiB",
-         "node storage limit of the bundle pool (0: half the largest device-local heap); a direction that needs more is "
-         "refused",
-         0, 1 << 20, {}},
-    };
-}
-
 std::unique_ptr<Mode> AtlasMode::create(const Settings& settings) { return std::make_unique<AtlasMode>(settings); }
 
 AtlasMode::AtlasMode(const Settings& settings) : mSettings(settings) {}
 
-struct AtlasMode::Gpu {
-    atlas::Atlas atlas;
-    atlasmode::AtlasTables tables;
-    std::unique_ptr<gpu::GpuScene> scene;
-    std::unique_ptr<gpu::CameraPass> camera;
-    std::unique_ptr<atlasmode::AtlasViewPass> view;
-    std::unique_ptr<BundlePool> pool;
-    std::unique_ptr<DirectionSampler> directions;
-    EnvironmentLight environment;
-    std::unique_ptr<EnvironmentLight> importance; // luminance-sampled, for directions=importance
-    std::unique_ptr<gpu::ShadowCubePass> shadows; // only with point or spot lights
-    vk::Buffer texels, triangles, charts, sender, received, sums, directRadiance, settled;
-    vk::Buffer samples, firstSample; // TexelSamples of the direct pass (with lights only)
-    vk::Buffer direction; // AtlasDirection, host-written before each direction's submission
-    // Glossy materials (interleaved transfer only): the glossy transfer atlas rides in `received`;
-    // the final gather's per-pixel sums and the view sample's point-light highlight per pixel.
-    bool glossy = false, glossyTransfer = false, shuffleDirections = false;
-    std::uint32_t directionSeed = 0;
-    vk::Buffer materials, gathered, highlight;
-    vk::PipelineLayout exchangeLayout, updateLayout, shadeLayout, directLayout, gatherLayout, highlightLayout;
-    vk::Pipeline exchange, update, shade, direct, gather, highlightPipeline;
-    vk::DescriptorSetLayout viewSetLayout, directSetLayout;
-    vk::DescriptorPool descriptorPool;
-    VkDescriptorSet viewSet = VK_NULL_HANDLE, directSet = VK_NULL_HANDLE;
-    atlas::AtlasLink link;
-    vk::GpuTimer timer;
-    Bounds bounds;
-    std::uint32_t texelCount = 0;
-    // Host wall clock of each direction's two submissions (lavapipe's timestamps do not separate
-    // compute passes from the draws before them): build + sort, exchange + update.
-    PassTime wallBuild{"build + sort (wall)"}, wallExchange{"exchange + update (wall)"};
-    std::uint64_t nodesLast = 0;
-    std::uint32_t rebuilds = 0;
-};
-
 AtlasMode::~AtlasMode() = default;
-
-std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {
-    const SceneFeatures f = scene.features();
-    const auto r = std::to_string(mSettings.getInt(kBundleResolution));
-    const auto a = std::to_string(mSettings.getInt(kAtlasResolution));
-    std::vector<PlannedPass> p;
-    p.push_back({"atlas", true, a + "^2 texels per page over " + std::to_string(f.triangles) +
-                                    " triangles, built once at set-up (charts, packing, exact texel areas)"});
-    p.push_back({"bundle build", true, "one " + r + "^2 bundle per direction with hit payload (triangle, barycentrics)"});
-    p.push_back({"bundle sort", true, "depth order: consecutive hits of a list see each other"});
-    std::string exchange = "consecutive hits exchange radiance both ways (interleaved: sender = emission + mean)";
-    exchange += f.emissiveMeshes ? "; emitters are the source" : "; no emissive meshes";
-    exchange += f.environment ? "; environment at list ends" : "; no environment: list ends receive nothing";
-    p.push_back({"exchange", true, exchange});
-    p.push_back({"update", true, "received radiance into compensated sums per texel side; sender rewritten"});
-    if (f.shadowCastingLights() > 0) {
-        const auto n = std::to_string(mSettings.getInt(kLightSamples));
-        p.push_back({"shadow maps", true,
-                     std::to_string(f.shadowCastingLights()) + " point/spot light(s): one " +
-                         std::to_string(mSettings.getInt(kShadowResolution)) +
-                         "^2 cube each, once; their light averaged over " + n + "x" + n +
-                         " points per texel into a direct atlas (layer direct), the exchange's first sender"});
-    } else {
-        p.push_back({"shadow maps", false, "no point or spot lights"});
-    }
-    const std::string glossy = mSettings.getString(kGlossy);
-    if (!f.glossy) {
-        p.push_back({"glossy transfer", false, "no glossy materials"});
-        p.push_back({"glossy gather", false, "no glossy materials"});
-    } else if (glossy == "off" || mSettings.getString(kTransfer) == "bounce") {
-        const std::string why = glossy == "off" ? "glossy = off" : "transfer = bounce (a pass's sender is fixed)";
-        p.push_back({"glossy transfer", false, why + ": the lobes are NOT transported (their albedo only)"});
-        p.push_back({"glossy gather", false, why + ": no glossy reflection toward the eye"});
-    } else {
-        const bool lights = f.shadowCastingLights() > 0;
-        if (glossy == "transfer") {
-            p.push_back({"glossy transfer", true,
-                         std::string("glossy texels store what their lobe reflects toward the next direction (in the "
-                                     "receiver), the next direction sends it") +
-                             (lights ? "; point/spot lights' lobes per texel sample too" : "")});
-        } else {
-            p.push_back({"glossy transfer", false, "glossy = gather: no glossy bounce between surfaces"});
-        }
-        p.push_back({"glossy gather", true,
-                     std::string("per direction a jittered camera G-buffer; each glossy pixel's bundle neighbour "
-                                 "sends through the lobe toward the eye") +
-                         (lights ? "; point/spot lights' highlight per view sample" : "")});
-    }
-    p.push_back({"view", true, std::to_string(mSettings.getInt(kViewSamples)) +
-                                   " jittered camera samples per pixel of the atlas at resolve (G-buffer + atlas uv raster)"});
-    return p;
-}
 
 void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     if (!ctx) {
@@ -473,15 +340,22 @@ void AtlasMode::lightDirect(double time) {
         g.timer.begin(cmd);
         g.shadows->record(cmd, time, &g.timer);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-        const std::uint32_t scope = g.timer.start(cmd, "direct");
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.direct.get());
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.directLayout.get(), 0, 1, &g.directSet, 0, nullptr);
-        vkCmdPushConstants(cmd, g.directLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-        vkCmdDispatch(cmd, vk::groupCount(g.texelCount, shader::kAtlasGroupSize), 1, 1);
-        g.timer.stop(cmd, scope);
+        recordDirect(cmd, push, "direct");
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     });
     g.timer.collect();
+}
+
+// One dispatch of direct.comp.glsl over every texel (the direct atlas, or with push.glossy the
+// lights' share of the glossy transfer atlas), timed as `name`.
+void AtlasMode::recordDirect(VkCommandBuffer cmd, const shader::AtlasDirectPush& push, const char* name) {
+    Gpu& g = *mGpu;
+    const std::uint32_t scope = g.timer.start(cmd, name);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.direct.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.directLayout.get(), 0, 1, &g.directSet, 0, nullptr);
+    vkCmdPushConstants(cmd, g.directLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, vk::groupCount(g.texelCount, shader::kAtlasGroupSize), 1, 1);
+    g.timer.stop(cmd, scope);
 }
 
 void AtlasMode::iterate(const IterationInfo& info) {
@@ -580,75 +454,6 @@ void AtlasMode::iterate(const IterationInfo& info) {
         mTotalWeight = 0.0;
     }
     ++mIterations;
-}
-
-// Point/spot lights into the glossy transfer atlas for the next direction (direct.comp.glsl's
-// glossy pass), after the exchange's atomics.
-void AtlasMode::recordGlossyLights(VkCommandBuffer cmd) {
-    Gpu& g = *mGpu;
-    shader::AtlasDirectPush push = directPush();
-    push.received = addressOf(*mContext, g.received);
-    push.next = g.directions->sample(directionIndex(mIterations + 1)).omega;
-    push.glossy = 1u;
-    push.materials = addressOf(*mContext, g.materials);
-    const std::uint32_t scope = g.timer.start(cmd, "glossy lights");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.direct.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.directLayout.get(), 0, 1, &g.directSet, 0, nullptr);
-    vkCmdPushConstants(cmd, g.directLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(g.texelCount, shader::kAtlasGroupSize), 1, 1);
-    g.timer.stop(cmd, scope);
-}
-
-// The final glossy gather of the direction just exchanged (its sender still unchanged): the
-// G-buffer of a jittered camera sample (a new sub-pixel position per direction), then one
-// invocation per pixel.
-void AtlasMode::recordGather(VkCommandBuffer cmd, double weight) {
-    Gpu& g = *mGpu;
-    const gpu::CameraSample sample = g.camera->sample(mIterations, true, mTime);
-    g.camera->record(cmd, sample, &g.timer);
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-    shader::AtlasGatherPush push{};
-    push.pool = g.pool->view();
-    push.sender = addressOf(*mContext, g.sender);
-    push.triangles = addressOf(*mContext, g.triangles);
-    push.gathered = addressOf(*mContext, g.gathered);
-    push.direction = addressOf(*mContext, g.direction);
-    push.width = g.camera->width();
-    push.height = g.camera->height();
-    push.atlasWidth = static_cast<std::uint32_t>(g.atlas.maps.width);
-    push.atlasHeight = static_cast<std::uint32_t>(g.atlas.maps.height);
-    push.weight = float(weight);
-    push.clear = mTotalWeight == 0.0 ? 1u : 0u;
-    const std::uint32_t scope = g.timer.start(cmd, "glossy gather");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.gather.get());
-    const VkDescriptorSet set = g.camera->set();
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.gatherLayout.get(), 0, 1, &set, 0, nullptr);
-    vkCmdPushConstants(cmd, g.gatherLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(push.width, shader::kAtlasViewGroupSize),
-                  vk::groupCount(push.height, shader::kAtlasViewGroupSize), 1);
-    g.timer.stop(cmd, scope);
-}
-
-// Point/spot lights' glossy highlight toward the eye for the view sample whose G-buffer was just
-// recorded.
-void AtlasMode::recordHighlight(VkCommandBuffer cmd) {
-    Gpu& g = *mGpu;
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-    shader::AtlasHighlightPush push{};
-    push.highlight = addressOf(*mContext, g.highlight);
-    push.width = g.camera->width();
-    push.height = g.camera->height();
-    push.lightCount = g.shadows->lightCount();
-    push.shadowResolution = g.shadows->resolution();
-    const std::uint32_t scope = g.timer.start(cmd, "glossy highlight");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.highlightPipeline.get());
-    const VkDescriptorSet sets[] = {g.camera->set(), g.directSet};
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.highlightLayout.get(), 0, 2, sets, 0, nullptr);
-    vkCmdPushConstants(cmd, g.highlightLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(push.width, shader::kAtlasViewGroupSize),
-                  vk::groupCount(push.height, shader::kAtlasViewGroupSize), 1);
-    g.timer.stop(cmd, scope);
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }
 
 ImageSet AtlasMode::resolve() {

@@ -134,6 +134,7 @@ private:
     void buildBundle(const IterationInfo& info);
     // Point/spot lights at scene time `time` into the direct atlas and the first sender.
     void lightDirect(double time);
+    void recordDirect(VkCommandBuffer cmd, const shader::AtlasDirectPush& push, const char* name);
     // Glossy materials: point/spot lights into the glossy transfer atlas and the final glossy
     // gather after a direction's exchange (w_j = weight); the lights' highlight of a view sample.
     void recordGlossyLights(VkCommandBuffer cmd);

@@ -1,0 +1,74 @@
+// Mode atlas's glossy passes ([HHGM10] 5.3-5.4): point/spot lights into the glossy transfer atlas,
+// the final glossy gather toward the eye, and the lights' own highlight per view sample.
+#include "modes/atlas/AtlasGpu.h"
+#include "vk/Commands.h"
+
+#include <modes/atlas/AtlasShared.h>
+
+namespace bl {
+
+// Point/spot lights into the glossy transfer atlas for the next direction (direct.comp.glsl's
+// glossy pass), after the exchange's atomics.
+void AtlasMode::recordGlossyLights(VkCommandBuffer cmd) {
+    Gpu& g = *mGpu;
+    shader::AtlasDirectPush push = directPush();
+    push.received = atlasmode::addressOf(*mContext, g.received);
+    push.next = g.directions->sample(directionIndex(mIterations + 1)).omega;
+    push.glossy = 1u;
+    push.materials = atlasmode::addressOf(*mContext, g.materials);
+    recordDirect(cmd, push, "glossy lights");
+}
+
+// The final glossy gather of the direction just exchanged (its sender still unchanged): the
+// G-buffer of a jittered camera sample (a new sub-pixel position per direction), then one
+// invocation per pixel.
+void AtlasMode::recordGather(VkCommandBuffer cmd, double weight) {
+    Gpu& g = *mGpu;
+    const gpu::CameraSample sample = g.camera->sample(mIterations, true, mTime);
+    g.camera->record(cmd, sample, &g.timer);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    shader::AtlasGatherPush push{};
+    push.pool = g.pool->view();
+    push.sender = atlasmode::addressOf(*mContext, g.sender);
+    push.triangles = atlasmode::addressOf(*mContext, g.triangles);
+    push.gathered = atlasmode::addressOf(*mContext, g.gathered);
+    push.direction = atlasmode::addressOf(*mContext, g.direction);
+    push.width = g.camera->width();
+    push.height = g.camera->height();
+    push.atlasWidth = static_cast<std::uint32_t>(g.atlas.maps.width);
+    push.atlasHeight = static_cast<std::uint32_t>(g.atlas.maps.height);
+    push.weight = float(weight);
+    push.clear = mTotalWeight == 0.0 ? 1u : 0u;
+    const std::uint32_t scope = g.timer.start(cmd, "glossy gather");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.gather.get());
+    const VkDescriptorSet set = g.camera->set();
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.gatherLayout.get(), 0, 1, &set, 0, nullptr);
+    vkCmdPushConstants(cmd, g.gatherLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, vk::groupCount(push.width, shader::kAtlasViewGroupSize),
+                  vk::groupCount(push.height, shader::kAtlasViewGroupSize), 1);
+    g.timer.stop(cmd, scope);
+}
+
+// Point/spot lights' glossy highlight toward the eye for the view sample whose G-buffer was just
+// recorded.
+void AtlasMode::recordHighlight(VkCommandBuffer cmd) {
+    Gpu& g = *mGpu;
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    shader::AtlasHighlightPush push{};
+    push.highlight = atlasmode::addressOf(*mContext, g.highlight);
+    push.width = g.camera->width();
+    push.height = g.camera->height();
+    push.lightCount = g.shadows->lightCount();
+    push.shadowResolution = g.shadows->resolution();
+    const std::uint32_t scope = g.timer.start(cmd, "glossy highlight");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.highlightPipeline.get());
+    const VkDescriptorSet sets[] = {g.camera->set(), g.directSet};
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.highlightLayout.get(), 0, 2, sets, 0, nullptr);
+    vkCmdPushConstants(cmd, g.highlightLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, vk::groupCount(push.width, shader::kAtlasViewGroupSize),
+                  vk::groupCount(push.height, shader::kAtlasViewGroupSize), 1);
+    g.timer.stop(cmd, scope);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+}
+
+} // namespace bl

@@ -1,0 +1,58 @@
+// Mode atlas's device state, shared by the files of the mode (AtlasMode.cpp: scene set-up, one
+// direction's build, exchange and update, resolve; AtlasGlossy.cpp: the glossy passes).
+#pragma once
+
+#include "atlas/Atlas.h"
+#include "atlas/AtlasLink.h"
+#include "bundle/BundlePool.h"
+#include "bundle/DirectionSampler.h"
+#include "gpu/CameraPass.h"
+#include "gpu/ShadowCubePass.h"
+#include "modes/atlas/AtlasMode.h"
+#include "modes/atlas/AtlasTables.h"
+#include "modes/atlas/AtlasViewPass.h"
+#include "sampling/EnvironmentLight.h"
+#include "vk/Descriptors.h"
+
+namespace bl {
+
+namespace atlasmode {
+inline glm::uvec2 addressOf(const vk::Context& ctx, const vk::Buffer& b) { return splitAddress(deviceAddress(ctx, b)); }
+} // namespace atlasmode
+
+struct AtlasMode::Gpu {
+    atlas::Atlas atlas;
+    atlasmode::AtlasTables tables;
+    std::unique_ptr<gpu::GpuScene> scene;
+    std::unique_ptr<gpu::CameraPass> camera;
+    std::unique_ptr<atlasmode::AtlasViewPass> view;
+    std::unique_ptr<BundlePool> pool;
+    std::unique_ptr<DirectionSampler> directions;
+    EnvironmentLight environment;
+    std::unique_ptr<EnvironmentLight> importance; // luminance-sampled, for directions=importance
+    std::unique_ptr<gpu::ShadowCubePass> shadows; // only with point or spot lights
+    vk::Buffer texels, triangles, charts, sender, received, sums, directRadiance, settled;
+    vk::Buffer samples, firstSample; // TexelSamples of the direct pass (with lights only)
+    vk::Buffer direction; // AtlasDirection, host-written before each direction's submission
+    // Glossy materials (interleaved transfer only): the glossy transfer atlas rides in `received`;
+    // the final gather's per-pixel sums and the view sample's point-light highlight per pixel.
+    bool glossy = false, glossyTransfer = false, shuffleDirections = false;
+    std::uint32_t directionSeed = 0;
+    vk::Buffer materials, gathered, highlight;
+    vk::PipelineLayout exchangeLayout, updateLayout, shadeLayout, directLayout, gatherLayout, highlightLayout;
+    vk::Pipeline exchange, update, shade, direct, gather, highlightPipeline;
+    vk::DescriptorSetLayout viewSetLayout, directSetLayout;
+    vk::DescriptorPool descriptorPool;
+    VkDescriptorSet viewSet = VK_NULL_HANDLE, directSet = VK_NULL_HANDLE;
+    atlas::AtlasLink link;
+    vk::GpuTimer timer;
+    Bounds bounds;
+    std::uint32_t texelCount = 0;
+    // Host wall clock of each direction's two submissions, beside the GPU timestamps: build + sort,
+    // exchange + update (the bench's ms per direction include host submission and waits).
+    PassTime wallBuild{"build + sort (wall)"}, wallExchange{"exchange + update (wall)"};
+    std::uint64_t nodesLast = 0;
+    std::uint32_t rebuilds = 0;
+};
+
+} // namespace bl

@@ -1,0 +1,106 @@
+// Mode atlas's parameters and pass plan (what runs for a scene and why).
+#include "modes/atlas/AtlasMode.h"
+
+#include "scene/Scene.h"
+
+namespace bl {
+
+std::vector<ParamSpec> AtlasMode::parameters() {
+    return {
+        {kAtlasResolution, std::int64_t{512}, "texels",
+         "side of an atlas page; the texel density follows from the scene's surface area", 16, 16384, {}},
+        {kBundleResolution, std::int64_t{512}, "pixels", "side of each direction's bundle (frame over the bounding sphere)",
+         8, 8192, {}},
+        {kDirections, std::string("halton"), "",
+         "global directions: uniform on the sphere (Hermes et al.: Halton), or importance = environment luminance + "
+         "offset ([TO12] Eq. 2; every direction is weighted by its density)",
+         0, 0, {"halton", "random", "stratified", "importance"}},
+        {kStrata, std::int64_t{1024}, "directions", "directions per pass of the stratified sequence", 1, 1 << 24, {}},
+        {kImportanceOffset, 1.0, "",
+         "L_o of directions=importance as a fraction of the mean environment luminance: keeps every direction sampled "
+         "for the exchange between surfaces",
+         0.0, 1e6, {}},
+        {kWeighting, 2.0, "",
+         "k: direction j weighs j^k in the estimate, forgetting the first directions' missing bounces (0: plain mean)",
+         0.0, 8.0, {}},
+        {kTransfer, std::string("interleaved"), "",
+         "interleaved: the sender is rewritten after every direction (Hermes et al.'s default); bounce: one pass of "
+         "bounce_directions per bounce, each sending the previous pass's light",
+         0, 0, {"interleaved", "bounce"}},
+        {kBounceDirections, std::int64_t{256}, "directions", "transfer = bounce: directions per pass (bounce)", 1, 1 << 24,
+         {}},
+        {kMaxSegments, std::int64_t{0}, "segments",
+         "transfer = bounce: longest path kept (1 = emitters only, 2 = one reflection, ...; 0: no limit); the last "
+         "pass keeps refining",
+         0, 1 << 16, {}},
+        {kViewSamples, std::int64_t{16}, "samples", "jittered camera samples per pixel when the atlas is viewed (resolve)",
+         1, 4096, {}},
+        {kBilinear, true, "", "bilinear lookups between texel centres inside a chart (else the texel alone)", 0, 0, {}},
+        {kShadowResolution, std::int64_t{512}, "texels", "side of each shadow cube face (point and spot lights)", 16, 8192,
+         {}},
+        {kLightSamples, std::int64_t{2}, "per side",
+         "n: an n x n grid of sample points per texel averages point/spot light over the texel's surface", 1, 16, {}},
+        {kGlossy, std::string("transfer"), "",
+         "glossy lobes: transfer = glossy transfer atlas + final gather toward the eye ([HHGM10] 5.3-5.4); gather = "
+         "toward the eye only (no glossy bounce between surfaces); off = their albedo only (diffuse)",
+         0, 0, {"transfer", "gather", "off"}},
+        {kMemoryCap, std::int64_t{0}, "MiB",
+         "node storage limit of the bundle pool (0: half the largest device-local heap); a direction that needs more is "
+         "refused",
+         0, 1 << 20, {}},
+    };
+}
+
+std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {
+    const SceneFeatures f = scene.features();
+    const auto r = std::to_string(mSettings.getInt(kBundleResolution));
+    const auto a = std::to_string(mSettings.getInt(kAtlasResolution));
+    std::vector<PlannedPass> p;
+    p.push_back({"atlas", true, a + "^2 texels per page over " + std::to_string(f.triangles) +
+                                    " triangles, built once at set-up (charts, packing, exact texel areas)"});
+    p.push_back({"bundle build", true, "one " + r + "^2 bundle per direction with hit payload (triangle, barycentrics)"});
+    p.push_back({"bundle sort", true, "depth order: consecutive hits of a list see each other"});
+    std::string exchange = "consecutive hits exchange radiance both ways (interleaved: sender = emission + mean)";
+    exchange += f.emissiveMeshes ? "; emitters are the source" : "; no emissive meshes";
+    exchange += f.environment ? "; environment at list ends" : "; no environment: list ends receive nothing";
+    p.push_back({"exchange", true, exchange});
+    p.push_back({"update", true, "received radiance into compensated sums per texel side; sender rewritten"});
+    if (f.shadowCastingLights() > 0) {
+        const auto n = std::to_string(mSettings.getInt(kLightSamples));
+        p.push_back({"shadow maps", true,
+                     std::to_string(f.shadowCastingLights()) + " point/spot light(s): one " +
+                         std::to_string(mSettings.getInt(kShadowResolution)) +
+                         "^2 cube each, once; their light averaged over " + n + "x" + n +
+                         " points per texel into a direct atlas (layer direct), the exchange's first sender"});
+    } else {
+        p.push_back({"shadow maps", false, "no point or spot lights"});
+    }
+    const std::string glossy = mSettings.getString(kGlossy);
+    if (!f.glossy) {
+        p.push_back({"glossy transfer", false, "no glossy materials"});
+        p.push_back({"glossy gather", false, "no glossy materials"});
+    } else if (glossy == "off" || mSettings.getString(kTransfer) == "bounce") {
+        const std::string why = glossy == "off" ? "glossy = off" : "transfer = bounce (a pass's sender is fixed)";
+        p.push_back({"glossy transfer", false, why + ": the lobes are NOT transported (their albedo only)"});
+        p.push_back({"glossy gather", false, why + ": no glossy reflection toward the eye"});
+    } else {
+        const bool lights = f.shadowCastingLights() > 0;
+        if (glossy == "transfer") {
+            p.push_back({"glossy transfer", true,
+                         std::string("glossy texels store what their lobe reflects toward the next direction (in the "
+                                     "receiver), the next direction sends it") +
+                             (lights ? "; point/spot lights' lobes per texel sample too" : "")});
+        } else {
+            p.push_back({"glossy transfer", false, "glossy = gather: no glossy bounce between surfaces"});
+        }
+        p.push_back({"glossy gather", true,
+                     std::string("per direction a jittered camera G-buffer; each glossy pixel's bundle neighbour "
+                                 "sends through the lobe toward the eye") +
+                         (lights ? "; point/spot lights' highlight per view sample" : "")});
+    }
+    p.push_back({"view", true, std::to_string(mSettings.getInt(kViewSamples)) +
+                                   " jittered camera samples per pixel of the atlas at resolve (G-buffer + atlas uv raster)"});
+    return p;
+}
+
+} // namespace bl
