@@ -16,15 +16,32 @@ namespace {
 // seed (any odd constant far from small pixel indices works).
 constexpr std::uint32_t kVplStreamKey = 0x85ebca6bu;
 
-// A direction uniform in the cone of half-angle acos(cosOuter) about `axis`: density
-// 1 / (2 pi (1 - cosOuter)), matching blBidirEmissionPdf.
-glm::vec3 sampleCone(glm::vec2 u, const glm::vec3& axis, float cosOuter) {
-    const float z = 1.0f - u.x * (1.0f - cosOuter);
-    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    const float phi = shader::kTwoPi * u.y;
+// A direction with density proportional to the spot light's profile (blBidirEmissionPdf): the CDF
+// over cos(theta) from the axis outward inverted for one number, so stratified inputs stay
+// stratified. Mass of the inner cone a = 1 - cosInner, of the smoothstep band b = (cosInner -
+// cosOuter) / 2; in the band, with x = (cos - cosOuter) / (cosInner - cosOuter), the mass beyond x
+// toward the axis is (1/2 - x^3 + x^4 / 2) (cosInner - cosOuter), monotone: solved by bisection.
+glm::vec3 sampleSpot(glm::vec2 u, const shader::GpuLight& light) {
+    const double cosInner = light.cosInner, cosOuter = light.cosOuter;
+    const double a = 1.0 - cosInner, width = cosInner - cosOuter;
+    const double s = double(u.x) * (a + 0.5 * width);
+    double z = 0.0;
+    if (s < a) {
+        z = 1.0 - s;
+    } else {
+        const double q = 0.5 - (s - a) / width; // x^3 - x^4 / 2 = q, in [0, 1/2]
+        double lo = 0.0, hi = 1.0;
+        for (int i = 0; i < 40; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (mid * mid * mid * (1.0 - 0.5 * mid) < q ? lo : hi) = mid;
+        }
+        z = cosOuter + 0.5 * (lo + hi) * width;
+    }
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double phi = 2.0 * 3.14159265358979323846 * double(u.y);
     glm::vec3 t, b;
-    shader::blOrthonormalBasis(axis, t, b);
-    return glm::normalize(r * std::cos(phi) * t + r * std::sin(phi) * b + z * axis);
+    shader::blOrthonormalBasis(light.direction, t, b);
+    return glm::normalize(float(r * std::cos(phi)) * t + float(r * std::sin(phi)) * b + float(z) * light.direction);
 }
 } // namespace
 
@@ -52,8 +69,8 @@ std::vector<shader::BidirVpl> VplSampler::sample(std::uint64_t first, std::uint3
         const glm::vec2 u(shader::blHashRandom(key, 3 * index + 1), shader::blHashRandom(key, 3 * index + 2));
         const auto l = std::min<std::size_t>(static_cast<std::size_t>(uLight * float(lights.size())), lights.size() - 1);
         const shader::GpuLight light = toGpuLight(lights[l]);
-        const glm::vec3 omega = light.type == shader::kLightSpot ? sampleCone(u, light.direction, light.cosOuter)
-                                                                  : shader::blSampleUniformSphere(u);
+        const glm::vec3 omega =
+            light.type == shader::kLightSpot ? sampleSpot(u, light) : shader::blSampleUniformSphere(u);
         v.light = static_cast<std::uint32_t>(l);
         v.pdfLight = selectPdf * shader::blBidirEmissionPdf(light, omega);
         v.intensity = light.intensity * shader::blLightProfile(light, omega);

@@ -4,13 +4,15 @@
 // Sampling (the densities the estimator divides by, exactly):
 //   light l            uniformly among the scene's point/spot lights: P(l) = 1 / L
 //   omega_{0,1}        point light: uniform on the sphere, p_e = 1 / (4 pi);
-//                      spot light: uniform inside its outer cone, p_e = 1 / (2 pi (1 - cos_outer))
-//                      (shaders/modes/bidir/BidirShared.h blBidirEmissionPdf, shared with the shader)
+//                      spot light: p_e = I(omega) / integral(I), the profile's smoothstep included
+//                      ([TO12] 4.1; shaders/modes/bidir/BidirShared.h blBidirEmissionPdf, shared
+//                      with the shader, which needs it for MIS)
 //   y                  the first hit of that ray (Embree, exact), so its area density is
 //                      P(l) p_e (n_y . omega_{y,0}) / |y - x0|^2.
 // The ray is traced on the CPU against the scene at the frame's time instead of read from a
 // reflective shadow map: exact (no texel discretization), and K rays per frame cost nothing beside
-// the K shadow cubes. An RSM on the GPU is the paper's way and the next step.
+// the K shadow cubes. The paper's way, reflective shadow maps on the GPU, is ReflectiveShadowMap.h
+// (vpl_source = rsm); this sampler is the exact, independent one it is checked against.
 #pragma once
 
 #include "reference/EmbreeScene.h"

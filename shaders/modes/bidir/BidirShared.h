@@ -5,6 +5,7 @@
 #include "../../shared/Accumulation.h"
 #include "../../shared/BundleTypes.h"
 #include "../../shared/GpuTypes.h"
+#include "../../shared/Lights.h"
 
 BL_NAMESPACE_BEGIN
 
@@ -63,15 +64,19 @@ BL_STATIC_ASSERT(sizeof(BidirPush) == 128, "BidirPush layout");
 
 BL_CONST uint kBidirGroupSize = 8u;
 
-// p_e(omega): solid-angle density with which a VPL ray leaves light `l` along unit omega, the
-// light chosen. Point lights: uniform on the sphere, 1 / (4 pi) ([TO12] section 4.1). Spot lights:
-// uniform inside the outer cone, 1 / (2 pi (1 - cos_outer)), zero outside (where the profile is
-// zero too, so no path is lost); the paper's I(omega) / integral(I) is left for later.
+// p_e(omega): solid-angle density with which a traced VPL ray leaves light `l` along unit omega,
+// the light chosen. Point lights: uniform on the sphere, 1 / (4 pi) ([TO12] section 4.1). Spot
+// lights: proportional to the intensity, I(omega) / integral(I) ([TO12] 4.1): the profile
+// (shared/Lights.h: 1 inside the inner cone, a smoothstep in cos between the cones) over its
+// integral 2 pi ((1 - cosInner) + (cosInner - cosOuter) / 2), the smoothstep's mean being 1/2;
+// zero outside the outer cone, where the profile is zero too. VplSampler.cpp samples it.
+BL_INLINE float blBidirSpotProfileIntegral(GpuLight l) { return kPi * (2.0f - l.cosInner - l.cosOuter); }
+
 BL_INLINE float blBidirEmissionPdf(GpuLight l, vec3 omega) {
     if (l.type != kLightSpot) {
         return 0.25f * kInvPi;
     }
-    return dot(omega, l.direction) > l.cosOuter ? 0.5f * kInvPi / (1.0f - l.cosOuter) : 0.0f;
+    return blLightProfile(l, omega) / blBidirSpotProfileIntegral(l);
 }
 
 // Layers bidir writes: visible emitters (1 segment), direct light by shadow maps (2), one
