@@ -96,13 +96,21 @@ Pipeline makeGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& d) {
     return Pipeline(device, raw);
 }
 
-Pipeline makeComputePipeline(VkDevice device, std::span<const std::uint32_t> spirv, VkPipelineLayout layout) {
+Pipeline makeComputePipeline(VkDevice device, std::span<const std::uint32_t> spirv, VkPipelineLayout layout,
+                             std::span<const std::uint32_t> specialization) {
     ShaderModule module = makeShaderModule(device, spirv);
+    std::vector<VkSpecializationMapEntry> entries(specialization.size());
+    for (std::uint32_t i = 0; i < entries.size(); ++i) {
+        entries[i] = {i, static_cast<std::uint32_t>(i * sizeof(std::uint32_t)), sizeof(std::uint32_t)};
+    }
+    const VkSpecializationInfo specializationInfo{static_cast<std::uint32_t>(entries.size()), entries.data(),
+                                                  specialization.size_bytes(), specialization.data()};
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module.get();
     info.stage.pName = "main";
+    info.stage.pSpecializationInfo = specialization.empty() ? nullptr : &specializationInfo;
     info.layout = layout;
     VkPipeline raw = VK_NULL_HANDLE;
     BL_VK_CHECK(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &raw));

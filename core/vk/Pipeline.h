@@ -29,7 +29,12 @@ struct GraphicsPipelineDesc {
 };
 
 Pipeline makeGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc);
-Pipeline makeComputePipeline(VkDevice device, std::span<const std::uint32_t> spirv, VkPipelineLayout layout);
+// `specialization`: the values of the shader's specialization constants constant_id = 0, 1, ...
+// (32 bits each), for settings fixed for the pipeline's life that gate whole code paths: the
+// compiler drops the paths they rule out (on lavapipe, which runs both sides of every branch
+// under a mask, that code would otherwise cost its full time).
+Pipeline makeComputePipeline(VkDevice device, std::span<const std::uint32_t> spirv, VkPipelineLayout layout,
+                             std::span<const std::uint32_t> specialization = {});
 
 // Workgroups needed to cover `items` with groups of `groupSize`.
 inline std::uint32_t groupCount(std::uint32_t items, std::uint32_t groupSize) {

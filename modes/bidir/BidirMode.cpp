@@ -17,6 +17,7 @@
 #include <modes/bidir/BidirEnvironment.h>
 #include <modes/bidir/BidirShared.h>
 #include <modes/bidir/BidirTextures.h>
+#include <modes/bidir/EvaluateSpecialization.h>
 #include <modes/bidir/Rsm.h>
 #include <modes/bidir/Suppression.h>
 #include <modes/bidir/evaluate.comp.spv.h>
@@ -310,7 +311,20 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
         .update(device, g->set);
     VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
     g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BidirPush), cs);
-    g->pipeline = vk::makeComputePipeline(device, kSpv_modes_bidir_evaluate_comp, g->pipelineLayout.get());
+    // EvaluateSpecialization.h, in its order: what the evaluation's paths depend on for the scene's life.
+    const SceneFeatures features = scene.features();
+    std::vector<std::uint32_t> specialization(shader::kBidirSpecCount);
+    specialization[shader::kBidirSpecStrategy] = strategy;
+    specialization[shader::kBidirSpecBounces] = static_cast<std::uint32_t>(mSettings.getInt(kBounces));
+    specialization[shader::kBidirSpecSuppression] = suppressionRuns(mSettings, features)
+                                                        ? suppressionOf(mSettings.getString(kSuppression))
+                                                        : shader::kBidirSuppressionNone;
+    specialization[shader::kBidirSpecGlossy] = features.glossy ? 1u : 0u;
+    specialization[shader::kBidirSpecTextured] = features.textured ? 1u : 0u;
+    specialization[shader::kBidirSpecEnvironment] = g->environment->count() > 0 ? 1u : 0u;
+    specialization[shader::kBidirSpecRsm] = g->rsm ? 1u : 0u;
+    g->pipeline = vk::makeComputePipeline(device, kSpv_modes_bidir_evaluate_comp, g->pipelineLayout.get(),
+                                          specialization);
     mInterleave->preparePipeline(g->camera->setLayout());
     mGpu = std::move(g);
 }

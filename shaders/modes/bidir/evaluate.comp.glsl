@@ -14,6 +14,7 @@
 // bounces = 2 pair k also gives the two-bounce path x0 -> VPL k -> bundle k's hit -> x (Eq. 7-8,
 // one strategy, no MIS), the mean over the pairs one sample of the indirect2 layer.
 #include "modes/bidir/BidirShared.h"
+#include "modes/bidir/EvaluateSpecialization.h"
 #include "modes/bidir/Interleave.h"
 #include "bundle/Traversal.glsl"
 #include "shared/Brdf.h"
@@ -29,6 +30,15 @@
 #include "gpu/ShadowCubeLookup.glsl"
 
 layout(local_size_x = kBidirGroupSize, local_size_y = kBidirGroupSize) in;
+
+// EvaluateSpecialization.h: fixed per pipeline, so the paths they rule out are compiled away.
+layout(constant_id = kBidirSpecStrategy) const uint kStrategy = kBidirStrategyMis;
+layout(constant_id = kBidirSpecBounces) const uint kBounces = 2u;
+layout(constant_id = kBidirSpecSuppression) const uint kSuppression = kBidirSuppressionNone;
+layout(constant_id = kBidirSpecGlossy) const bool kGlossy = true;
+layout(constant_id = kBidirSpecTextured) const bool kTextured = true;
+layout(constant_id = kBidirSpecEnvironment) const bool kEnvironment = true;
+layout(constant_id = kBidirSpecRsm) const bool kRsm = true;
 
 layout(set = kBidirSet, binding = kBidirBindingLights) readonly buffer LightBlock { GpuLight lights[]; };
 layout(set = kBidirSet, binding = kBidirBindingVpls) readonly buffer VplBlock { BidirVpl vpls[]; };
@@ -55,6 +65,23 @@ bool gOutsideBundle = false;
 #include "modes/bidir/EnvironmentDirect.glsl"
 #include "modes/bidir/HitAlbedo.glsl"
 
+// blBidirEvalBrdf with this pipeline's suppression; without glossy materials every BRDF is
+// Lambert's (what blEvalBrdf returns for a material without a specular lobe).
+vec3 bidirBrdf(GpuMaterial m, vec3 albedo, vec3 n, vec3 wi, vec3 wo, float density) {
+    if (!kGlossy) {
+        return blLambert(albedo);
+    }
+    return blBidirEvalBrdf(m, albedo, n, wi, wo, density, kSuppression, push.suppressionNeighbours);
+}
+
+// blEvalBrdf (no suppression), Lambert's without glossy materials.
+vec3 bidirBrdfUnsuppressed(GpuMaterial m, vec3 albedo, vec3 n, vec3 wi, vec3 wo) {
+    return kGlossy ? blEvalBrdf(m, albedo, n, wi, wo) : blLambert(albedo);
+}
+
+// The albedo at a bundle hit: its material's without textures in the scene.
+vec3 bidirHitAlbedo(GpuMaterial m, vec2 uv) { return kTextured ? blPackedTextureAlbedo(m, uv) : m.albedo; }
+
 // Directional sample densities (samples per steradian, [TO12] Eq. 15-17) of the one-bounce path
 // x0 -> y -> x whose middle vertex y has area densities pA1 (VPL strategy) and pA2 (bundle
 // strategy), pLight = P(l) p_e of the light ray: with p the density of the strategy in use (the
@@ -62,7 +89,7 @@ bool gOutsideBundle = false;
 // d_{y,3} = N p |y - x|^2 / cos_{y,3} = N p p_r / pA2; dY = 1 / (1 / d_{y,0} + 1 / d_{y,3})
 // (Eq. 13) at y, dX = d_{y,3} at x (the camera side is a delta). Zero densities give +inf.
 void oneBounceDensities(float pA1, float pA2, float pLight, out float dY, out float dX) {
-    float p = push.strategy == kBidirStrategyVpl ? pA1 : (push.strategy == kBidirStrategyBundle ? pA2 : pA1 + pA2);
+    float p = kStrategy == kBidirStrategyVpl ? pA1 : (kStrategy == kBidirStrategyBundle ? pA2 : pA1 + pA2);
     float np = float(push.pairs) * p;
     float inv0 = np > 0.0 && pLight > 0.0 ? pA1 / (np * pLight) : 0.0;
     float inv3 = np > 0.0 ? pA2 / (np * push.hemispherePdf) : 0.0;
@@ -92,7 +119,9 @@ vec3 lightAt(uint l, vec3 p, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float 
     if (cosine <= 0.0 || profile <= 0.0) {
         return vec3(0.0); // lit on the side wo does not see, or outside the spot cone
     }
-    float pLight = blBidirLightPdf(l, light, fromLight) / float(push.lightCount);
+    // Traced VPLs: the RSM block is empty and blBidirLightPdf would return this same density.
+    float pLight = (kRsm ? blBidirLightPdf(l, light, fromLight) : blBidirEmissionPdf(light, fromLight)) /
+                   float(push.lightCount);
     areaPdf = pLight * cosine / r2;
     float visibility = blShadowVisibility(kShadowCubeFaces * l, push.shadowResolution, d, n);
     if (visibility <= 0.0) {
@@ -102,7 +131,7 @@ vec3 lightAt(uint l, vec3 p, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float 
     if (pOther >= 0.0) {
         oneBounceDensities(areaPdf, pOther, pLight, dY, dX);
     }
-    vec3 f = blBidirEvalBrdf(m, albedo, n, wi, wo, dY, push.suppression, push.suppressionNeighbours);
+    vec3 f = bidirBrdf(m, albedo, n, wi, wo, dY);
     return f * light.intensity * (profile * visibility * cosine / r2);
 }
 
@@ -110,9 +139,9 @@ vec3 lightAt(uint l, vec3 p, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float 
 // one-bounce (p = x) and two-bounce (p = the bundle hit) terms: false when the VPL is invalid, p
 // lies behind it or it behind p (reflection, not transmission), or its shadow cube hides p.
 // Else wi (p toward the VPL), r2 = |VPL - p|^2, the cosines at p and at the VPL, visibility.
-bool vplEdge(uint k, vec3 p, vec3 n, out BidirVpl v, out vec3 wi, out float r2, out float cosP, out float cosV,
+// v = vpls[k], loaded once per pair by the caller for both terms.
+bool vplEdge(uint k, BidirVpl v, vec3 p, vec3 n, out vec3 wi, out float r2, out float cosP, out float cosV,
              out float visibility) {
-    v = vpls[k];
     wi = vec3(0.0);
     cosP = cosV = visibility = 0.0;
     vec3 toVpl = v.position - p;
@@ -130,23 +159,21 @@ bool vplEdge(uint k, vec3 p, vec3 n, out BidirVpl v, out vec3 wi, out float r2, 
     return visibility > 0.0;
 }
 
-// Strategy j = 1 of pair k at x.
-vec3 vplTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
-    BidirVpl v;
+// Strategy j = 1 of pair k (VPL v, its material mv) at x.
+vec3 vplTerm(uint k, BidirVpl v, GpuMaterial mv, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
     vec3 wi;
     float r2, cosX, cosY, visibility;
-    if (!vplEdge(k, x, n, v, wi, r2, cosX, cosY, visibility)) {
+    if (!vplEdge(k, v, x, n, wi, r2, cosX, cosY, visibility)) {
         return vec3(0.0);
     }
     float p2 = push.hemispherePdf * cosY / r2; // the bundle strategy's area density of y
     float dY, dX;
     oneBounceDensities(v.areaPdf, p2, v.pdfLight, dY, dX);
-    vec3 fy = blBidirEvalBrdf(materials[v.material], v.albedo, v.normal, v.toLight, -wi, dY, push.suppression,
-                              push.suppressionNeighbours);
-    vec3 fx = blBidirEvalBrdf(m, albedo, n, wi, wo, dX, push.suppression, push.suppressionNeighbours);
+    vec3 fy = bidirBrdf(mv, v.albedo, v.normal, v.toLight, -wi, dY);
+    vec3 fx = bidirBrdf(m, albedo, n, wi, wo, dX);
     // I f_y f_x G(y, x) / (P(l) p_e): the light ray's own cos/r^2 cancels against its area pdf.
     vec3 estimate = v.intensity * fy * fx * (visibility * cosX * cosY / (r2 * v.pdfLight));
-    if (push.strategy == kBidirStrategyVpl) {
+    if (kStrategy == kBidirStrategyVpl) {
         return estimate;
     }
     return estimate * (v.areaPdf / (v.areaPdf + p2));
@@ -159,22 +186,22 @@ vec3 vplTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
 // the path's density p_{1,2} of Eq. 8 being P(l) p_e p_r |x1 - x2|^2 / (cos1 cos2). Visibility
 // x1 - x2 from the VPL's shadow cube, shared with its one-bounce term. Clamping (this term
 // only): |x1 - x2|^2 >= push.twoBounceMinDistance2, a bias stated in BidirMode.h.
-vec3 twoBounceTerm(uint k, vec3 y, vec3 ny, GpuMaterial my, vec3 ay, vec3 wy) {
-    BidirVpl v;
+vec3 twoBounceTerm(uint k, BidirVpl v, GpuMaterial mv, vec3 y, vec3 ny, GpuMaterial my, vec3 ay, vec3 wy) {
     vec3 wi;
     float r2, cos2, cos1, visibility; // cos2 at x2 = y, cos1 at x1 = the VPL
-    if (!vplEdge(k, y, ny, v, wi, r2, cos2, cos1, visibility)) {
+    if (!vplEdge(k, v, y, ny, wi, r2, cos2, cos1, visibility)) {
         return vec3(0.0);
     }
-    vec3 f1 = blEvalBrdf(materials[v.material], v.albedo, v.normal, v.toLight, -wi);
-    vec3 f2 = blEvalBrdf(my, ay, ny, wi, wy);
+    vec3 f1 = bidirBrdfUnsuppressed(mv, v.albedo, v.normal, v.toLight, -wi);
+    vec3 f2 = bidirBrdfUnsuppressed(my, ay, ny, wi, wy);
     float g = visibility * cos1 * cos2 / max(r2, push.twoBounceMinDistance2);
     return v.intensity * f1 * f2 * (g / v.pdfLight);
 }
 
 // Pair k's bundle from x: strategy j = 2 of the one-bounce term (returned; zero for strategy =
 // vpl) and, with bounces = 2, the two-bounce term through the same hit y (added to `twoBounce`).
-vec3 bundleTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, inout vec3 twoBounce) {
+vec3 bundleTerm(uint k, BidirVpl v, GpuMaterial mv, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo,
+                inout vec3 twoBounce) {
     BundleFrame frame = blBundlePoolFrame(push.pool, k);
     float cosine = dot(n, frame.direction);
     float side = cosine >= 0.0 ? 1.0 : -1.0;
@@ -205,15 +232,14 @@ vec3 bundleTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, ino
     vec3 ny = dot(shading, wy) >= 0.0 ? shading : -shading; // two-sided reflection
     float cosY = dot(ny, wy);
     GpuMaterial my = materials[payload.material & kBundleHitMaterialMask];
-    vec3 ay = blPackedTextureAlbedo(my, payload.uv); // textured
+    vec3 ay = bidirHitAlbedo(my, payload.uv); // textured
     float weightX = abs(cosine) / push.hemispherePdf;
-    if (push.bounces >= 2u) {
+    if (kBounces >= 2u) {
         // Eq. 14 at x for the two-bounce path: d = N p_r (d on the light side is a delta).
-        vec3 fx2 = blBidirEvalBrdf(m, albedo, n, d, wo, float(push.pairs) * push.hemispherePdf, push.suppression,
-                                   push.suppressionNeighbours);
-        twoBounce += twoBounceTerm(k, y, ny, my, ay, wy) * fx2 * weightX;
+        vec3 fx2 = bidirBrdf(m, albedo, n, d, wo, float(push.pairs) * push.hemispherePdf);
+        twoBounce += twoBounceTerm(k, v, mv, y, ny, my, ay, wy) * fx2 * weightX;
     }
-    if (push.strategy == kBidirStrategyVpl) {
+    if (kStrategy == kBidirStrategyVpl) {
         return vec3(0.0);
     }
     float p2 = push.hemispherePdf * max(cosY, 0.0) / r2;
@@ -221,8 +247,8 @@ vec3 bundleTerm(uint k, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, ino
     for (uint l = 0u; l < push.lightCount; ++l) {
         float p1, dX;
         vec3 reflected = lightAt(l, y, ny, my, ay, wy, p2, p1, dX);
-        float weight = push.strategy == kBidirStrategyBundle ? 1.0 : (p2 > 0.0 ? p2 / (p1 + p2) : 0.0);
-        vec3 fx = blBidirEvalBrdf(m, albedo, n, d, wo, dX, push.suppression, push.suppressionNeighbours);
+        float weight = kStrategy == kBidirStrategyBundle ? 1.0 : (p2 > 0.0 ? p2 / (p1 + p2) : 0.0);
+        vec3 fx = bidirBrdf(m, albedo, n, d, wo, dX);
         sum += reflected * fx * (weight * weightX);
     }
     return sum;
@@ -243,7 +269,7 @@ void main() {
     // The pool contract: a build that ran out of nodes left lists incomplete; the mode grows the
     // pool and redoes the frame, so nothing of this one may be added.
     // pairs = 0 (no point/spot light): no pool is bound, its address is 0 and must not be read.
-    if (push.pairs > 0u && (push.strategy != kBidirStrategyVpl || push.bounces >= 2u) && blBundlePoolOverflowed(BundleCounterBlock(push.pool.counters))) {
+    if (push.pairs > 0u && (kStrategy != kBidirStrategyVpl || kBounces >= 2u) && blBundlePoolOverflowed(BundleCounterBlock(push.pool.counters))) {
         return;
     }
     if (!blCameraHitSurface(pixel)) {
@@ -271,17 +297,26 @@ void main() {
         float unusedPdf, unusedDensity;
         layers[kPathDirect] += lightAt(l, x, n, m, albedo, wo, -1.0, unusedPdf, unusedDensity);
     }
-    layers[kPathDirect] += bidirEnvironmentDirect(x, n, m, albedo, wo);
+    if (kEnvironment) {
+        layers[kPathDirect] += bidirEnvironmentDirect(x, n, m, albedo, wo);
+    }
     vec3 indirect = vec3(0.0);
     vec3 twoBounce = vec3(0.0);
-    const bool bundles = push.strategy != kBidirStrategyVpl || push.bounces >= 2u;
+    const bool bundles = kStrategy != kBidirStrategyVpl || kBounces >= 2u;
+    const bool vplUsed = kStrategy != kBidirStrategyBundle || kBounces >= 2u;
     uint used = 0u; // pairs of this pixel's sub-image
     for (uint k = firstPair; k < push.pairs; k += pairStride, ++used) {
-        if (push.strategy != kBidirStrategyBundle) {
-            indirect += vplTerm(k, x, n, m, albedo, wo);
+        BidirVpl v;
+        GpuMaterial mv;
+        if (vplUsed) {
+            v = vpls[k]; // once for the pair's one- and two-bounce terms
+            mv = materials[v.material];
+        }
+        if (kStrategy != kBidirStrategyBundle) {
+            indirect += vplTerm(k, v, mv, x, n, m, albedo, wo);
         }
         if (bundles) {
-            indirect += bundleTerm(k, x, n, m, albedo, wo, twoBounce);
+            indirect += bundleTerm(k, v, mv, x, n, m, albedo, wo, twoBounce);
         }
     }
     if (gOutsideBundle) {
