@@ -20,6 +20,9 @@
 //   bundle_resolution      256      pixels per side of each bundle
 //   shadow_resolution      1024     texels per face side of the lights' shadow cubes
 //   vpl_shadow_resolution  256      texels per face side of each VPL's shadow cube
+//   vpl_shadow_taps        4        PCF taps a side of the VPL cubes' lookups (4: 4x4 as the lights'
+//                                   cubes; 2 or 1: 4x / 16x fewer taps, a different filter of the
+//                                   VPL shadows, its bias measured in experiments/bidir-table1.md)
 //   directions             random   bundle directions: random or halton
 //   memory_cap_mib         2048     bundle node pool limit (a frame that needs more is refused)
 //   bounces                2        1: one-bounce only; 2: also the two-bounce term (Eq. 7-8): the
@@ -87,6 +90,7 @@ public:
     static constexpr const char* kBundleResolution = "bundle_resolution";
     static constexpr const char* kShadowResolution = "shadow_resolution";
     static constexpr const char* kVplShadowResolution = "vpl_shadow_resolution";
+    static constexpr const char* kVplShadowTaps = "vpl_shadow_taps";
     static constexpr const char* kDirections = "directions";
     static constexpr const char* kMemoryCap = "memory_cap_mib";
     static constexpr const char* kBounces = "bounces";

@@ -45,42 +45,68 @@ float blShadowStored(uint map, ivec2 texel, uint layer) {
     return imageLoad(blShadowMaps, ivec3(texel, int(layer))).r;
 }
 
-// Fraction of the PCF taps of map `map` that see the cube's centre from receiver point p (relative to the
-// centre) with normal n. Each tap compares the stored distance along its texel's centre ray with
-// the distance at which that same ray meets the receiver's tangent plane, so a planar receiver
-// never shadows itself and no scale-dependent bias is needed.
-float blShadowVisibilityIn(uint map, uint firstLayer, uint resolution, vec3 p, vec3 n) {
+// One PCF tap: 1 when texel `texel` of the face with basis (r, u, f), at layer `layer` of map
+// `map`, sees the cube's centre from the receiver plane through p (relative to the centre) with
+// normal n, else 0. The tap compares the stored distance along its texel's centre ray with the
+// distance at which that same ray meets the receiver's tangent plane, so a planar receiver never
+// shadows itself and no scale-dependent bias is needed.
+float blShadowTap(uint map, uint layer, ivec2 texel, vec3 r, vec3 u, vec3 f, float res, vec3 p, vec3 n) {
+    vec2 c = (vec2(texel) + 0.5) / res * 2.0 - 1.0;
+    vec3 centreRay = normalize(f + c.x * r - c.y * u);
+    float denom = dot(centreRay, n);
+    if (denom >= -kShadowParallelCosine) {
+        return 1.0; // the tap's ray runs parallel to or behind the receiver plane
+    }
+    float receiver = dot(p, n) / denom;
+    float stored = blShadowStored(map, texel, layer);
+    return stored >= receiver * (1.0 - kShadowRelativeBias) ? 1.0 : 0.0;
+}
+
+// Fraction of the taps x taps PCF taps (1 to 4 a side; a constant, so the loops unroll) of map
+// `map` that see the cube's centre from receiver point p (relative to the centre) with normal n
+// (blShadowTap).
+float blShadowVisibilityTaps(uint map, uint firstLayer, uint resolution, vec3 p, vec3 n, const int taps) {
     const float res = float(resolution);
     uint face = blCubeFaceOf(p);
     vec3 r, u, f;
     blCubeFaceBasis(face, r, u, f);
     vec2 st = blShadowFaceTexel(p, face, res);
-    const float centre = 0.5 * float(kShadowPcfTaps - 1);
+    float centre = 0.5 * float(taps - 1);
     float lit = 0.0;
-    for (int j = 0; j < kShadowPcfTaps; ++j) {
-        for (int i = 0; i < kShadowPcfTaps; ++i) {
+    // A tap a texel or more inside the face (most of them): its centre direction f + x r + y u has
+    // |x|, |y| < 1, so the face lookup below would choose this face and this texel; it is read
+    // directly. The others are marked (bit j * taps + i) for the general path.
+    uint nearEdge = 0u;
+    for (int j = 0; j < taps; ++j) {
+        for (int i = 0; i < taps; ++i) {
             vec2 tap = st + vec2(float(i) - centre, float(j) - centre);
-            // Taps beyond the face continue on the neighbouring face.
-            vec2 xy = vec2(tap.x / res * 2.0 - 1.0, 1.0 - tap.y / res * 2.0);
-            vec3 dir = f + xy.x * r + xy.y * u;
-            uint tapFace = blCubeFaceOf(dir);
-            vec2 tapSt = tapFace == face ? tap : blShadowFaceTexel(dir, tapFace, res);
-            ivec2 texel = clamp(ivec2(floor(tapSt)), ivec2(0), ivec2(int(resolution) - 1));
-            vec3 tr, tu, tf;
-            blCubeFaceBasis(tapFace, tr, tu, tf);
-            vec2 c = (vec2(texel) + 0.5) / res * 2.0 - 1.0;
-            vec3 centreRay = normalize(tf + c.x * tr - c.y * tu);
-            float denom = dot(centreRay, n);
-            if (denom >= -kShadowParallelCosine) {
-                lit += 1.0; // the tap's ray runs parallel to or behind the receiver plane
-                continue;
+            if (all(greaterThanEqual(tap, vec2(1.0))) && all(lessThan(tap, vec2(res - 1.0)))) {
+                lit += blShadowTap(map, firstLayer + face, ivec2(floor(tap)), r, u, f, res, p, n);
+            } else {
+                nearEdge |= 1u << uint(j * taps + i);
             }
-            float receiver = dot(p, n) / denom;
-            float stored = blShadowStored(map, texel, firstLayer + tapFace);
-            lit += stored >= receiver * (1.0 - kShadowRelativeBias) ? 1.0 : 0.0;
         }
     }
-    return lit / float(kShadowPcfTaps * kShadowPcfTaps);
+    // Taps near or beyond the face's edge; those beyond it continue on the neighbouring face. A loop
+    // over the marked taps only: SIMD CPU drivers (lavapipe) run both sides of a branch under a lane
+    // mask, but a loop only as often as its busiest lane needs.
+    for (; nearEdge != 0u; nearEdge &= nearEdge - 1u) {
+        int t = findLSB(nearEdge);
+        vec2 tap = st + vec2(float(t % taps) - centre, float(t / taps) - centre);
+        vec2 xy = vec2(tap.x / res * 2.0 - 1.0, 1.0 - tap.y / res * 2.0);
+        vec3 dir = f + xy.x * r + xy.y * u;
+        uint tapFace = blCubeFaceOf(dir);
+        vec2 tapSt = tapFace == face ? tap : blShadowFaceTexel(dir, tapFace, res);
+        ivec2 texel = clamp(ivec2(floor(tapSt)), ivec2(0), ivec2(int(resolution) - 1));
+        vec3 tr, tu, tf;
+        blCubeFaceBasis(tapFace, tr, tu, tf);
+        lit += blShadowTap(map, firstLayer + tapFace, texel, tr, tu, tf, res, p, n);
+    }
+    return lit / float(taps * taps);
+}
+
+float blShadowVisibilityIn(uint map, uint firstLayer, uint resolution, vec3 p, vec3 n) {
+    return blShadowVisibilityTaps(map, firstLayer, resolution, p, n, kShadowPcfTaps);
 }
 
 // The same on map 0 (the only one unless BL_SHADOW_BINDING_2 is defined).

@@ -1,6 +1,6 @@
 // Specialization constants of mode bidir's evaluation pass (evaluate.comp.glsl): settings and
 // scene facts fixed for the pipeline's life that decide whole code paths (strategy, bounces,
-// suppression, glossy or textured materials, environment bundles, reflective shadow maps). The
+// suppression, glossy or textured materials, environment bundles, reflective shadow maps, PCF taps). The
 // host (BidirMode::setScene) passes them in this order, constant_id = index. Why constants and
 // not push constants: the compiler then drops the paths they rule out, and lavapipe, which
 // executes both sides of every branch under a lane mask, would otherwise pay for all of them on
@@ -19,7 +19,8 @@ BL_CONST uint kBidirSpecGlossy = 3u;      // 1: some material has a specular lob
 BL_CONST uint kBidirSpecTextured = 4u;    // 1: some material has an albedo texture
 BL_CONST uint kBidirSpecEnvironment = 5u; // 1: environment bundles light the scene
 BL_CONST uint kBidirSpecRsm = 6u;         // 1: VPLs from reflective shadow maps (their texel CDF gives p_e)
-BL_CONST uint kBidirSpecCount = 7u;
+BL_CONST uint kBidirSpecVplTaps = 7u;     // PCF taps a side of the VPL cubes' lookups (vpl_shadow_taps)
+BL_CONST uint kBidirSpecCount = 8u;
 
 BL_NAMESPACE_END
 #endif
