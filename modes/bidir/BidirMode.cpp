@@ -63,10 +63,6 @@ std::vector<ParamSpec> BidirMode::parameters() {
          16, 8192, {}},
         {kVplShadowResolution, std::int64_t{256}, "texels", "face side of each VPL's shadow cube ([TO12]: 256^2)", 16,
          8192, {}},
-        {kVplShadowTaps, std::int64_t{4}, "taps per side",
-         "PCF taps a side of the VPL cubes' lookups (4: 4x4 like the lights'; fewer: faster, VPL shadows filtered "
-         "differently)",
-         1, 4, {}},
         {kDirections, std::string("random"), "", "bundle direction sequence", 0, 0, {"random", "halton"}},
         {kMemoryCap, std::int64_t{2048}, "MiB", "node storage limit of the bundle pool; a frame that needs more is refused",
          1, 1 << 20, {}},
@@ -75,7 +71,7 @@ std::vector<ParamSpec> BidirMode::parameters() {
          "glossy artifact suppression ([TO12] section 5): none (unbiased), clamp (the lobe truncated at d/m) or "
          "roughness (its exponent lowered to that peak, Eq. 10-12)",
          0, 0, {"none", "clamp", "roughness"}},
-        {kVplSource, std::string("traced"), "",
+        {kVplSource, std::string("rsm"), "",
          "VPLs from reflective shadow cubes on the GPU (rsm, [TO12] 4.1) or light rays traced on the CPU (traced)", 0, 0,
          {"rsm", "traced"}},
         {kRsmResolution, std::int64_t{256}, "texels", "face side of the reflective shadow cubes ([TO12]: 256^2)", 4,
@@ -99,7 +95,7 @@ std::vector<ParamSpec> BidirMode::parameters() {
         {kTemporalDepthVariance, 1e-4, "log-depth^2",
          "2 sigma^2 of the temporal caches' log-depth Gaussian h = exp(-log^2(z/z_c) / (2 sigma^2)) ([TO12s]: 1e-4)",
          1e-8, 1e4, {}},
-        {kFit, std::string("scene"), "",
+        {kFit, std::string("visible"), "",
          "bundle frames around the camera-visible points of the frame ([TO12s] B.1) or the scene's bounding sphere", 0,
          0, {"visible", "scene"}},
         {kTwoBounceClamp, 0.0, "scene radius",
@@ -327,7 +323,6 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     specialization[shader::kBidirSpecTextured] = features.textured ? 1u : 0u;
     specialization[shader::kBidirSpecEnvironment] = g->environment->count() > 0 ? 1u : 0u;
     specialization[shader::kBidirSpecRsm] = g->rsm ? 1u : 0u;
-    specialization[shader::kBidirSpecVplTaps] = static_cast<std::uint32_t>(mSettings.getInt(kVplShadowTaps));
     g->pipeline = vk::makeComputePipeline(device, kSpv_modes_bidir_evaluate_comp, g->pipelineLayout.get(),
                                           specialization);
     mInterleave->preparePipeline(g->camera->setLayout());
