@@ -63,6 +63,10 @@ std::vector<ParamSpec> BidirMode::parameters() {
          16, 8192, {}},
         {kVplShadowResolution, std::int64_t{256}, "texels", "face side of each VPL's shadow cube ([TO12]: 256^2)", 16,
          8192, {}},
+        {kVplShadowTaps, std::int64_t{4}, "taps per side",
+         "PCF taps a side of the VPL cubes' lookups (4: 4x4 like the lights'; fewer: faster, VPL shadows filtered "
+         "differently)",
+         1, 4, {}},
         {kDirections, std::string("random"), "", "bundle direction sequence", 0, 0, {"random", "halton"}},
         {kMemoryCap, std::int64_t{2048}, "MiB", "node storage limit of the bundle pool; a frame that needs more is refused",
          1, 1 << 20, {}},
@@ -323,6 +327,7 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     specialization[shader::kBidirSpecTextured] = features.textured ? 1u : 0u;
     specialization[shader::kBidirSpecEnvironment] = g->environment->count() > 0 ? 1u : 0u;
     specialization[shader::kBidirSpecRsm] = g->rsm ? 1u : 0u;
+    specialization[shader::kBidirSpecVplTaps] = static_cast<std::uint32_t>(mSettings.getInt(kVplShadowTaps));
     g->pipeline = vk::makeComputePipeline(device, kSpv_modes_bidir_evaluate_comp, g->pipelineLayout.get(),
                                           specialization);
     mInterleave->preparePipeline(g->camera->setLayout());
