@@ -512,6 +512,10 @@ ImageSet BidirMode::resolve() {
     gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations);
     out.layers = std::move(estimate.layers);
     out.nonFiniteSamples = estimate.nonFiniteSamples;
+    if (mInterleave->options().temporal && mIterations > 0) {
+        // The last frame's share of accepted reprojected caches ([TO12s] Fig. 1 b, 4 c).
+        out.layers.emplace_back("cache_hits", mInterleave->cacheHits());
+    }
     out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
     out.counters.emplace_back("invalid_vpls", double(g.invalidVpls));
     if (g.rsm) {

@@ -17,15 +17,17 @@ Interleaving::Interleaving(const vk::Context& ctx, std::uint32_t width, std::uin
                                 VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                                 true});
     const bool temporal = on && options.temporal;
-    mCaches = vk::GpuImage(ctx, {temporal ? width : 1u, temporal ? height : 1u, 2 * shader::kTemporalCaches,
+    mCaches = vk::GpuImage(ctx, {temporal ? width : 1u, temporal ? height : 1u, shader::kTemporalCacheLayers,
                                  VK_FORMAT_R32G32B32A32_SFLOAT,
-                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, true});
+                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                                     VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                 true});
     mCacheInfo = vk::Buffer(ctx, sizeof(shader::InterleaveCache) * shader::kTemporalCaches,
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload);
     std::memset(mCacheInfo.data(), 0, sizeof(shader::InterleaveCache) * shader::kTemporalCaches);
     mEvaluate = vk::Buffer(ctx, sizeof(shader::InterleaveEvaluate), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                            vk::MemoryUse::Upload);
-    const shader::InterleaveEvaluate evaluate{options.n, on ? 1u : 0u, 0u, 0u};
+    const shader::InterleaveEvaluate evaluate{options.n, on ? 1u : 0u, options.n > 1 && options.filter ? 1u : 0u, 0u};
     std::memcpy(mEvaluate.data(), &evaluate, sizeof(evaluate));
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         VkClearColorValue zero{};
@@ -88,6 +90,17 @@ gpu::CameraSample Interleaving::cameraSample(const gpu::CameraSample& jittered, 
     s.samplePosition = shader::blTemporalSubPixel(static_cast<std::uint32_t>(mUpdates % shader::kTemporalCaches));
     s.jitterNdc = (s.samplePosition - 0.5f) * glm::vec2(2.0f / float(width), 2.0f / float(height));
     return s;
+}
+
+Image Interleaving::cacheHits() const {
+    Image out(static_cast<int>(mWidth), static_cast<int>(mHeight));
+    if (!mOptions.temporal) {
+        return out;
+    }
+    const std::vector<std::byte> raw = mCaches.download(*mContext, VK_IMAGE_LAYOUT_GENERAL, shader::kTemporalHitsLayer);
+    const auto* texels = reinterpret_cast<const glm::vec4*>(raw.data());
+    for (std::size_t i = 0; i < out.pixelCount(); ++i) out.pixels()[i] = glm::vec3(texels[i].x);
+    return out;
 }
 
 void Interleaving::recordClear(VkCommandBuffer cmd) const {

@@ -15,6 +15,7 @@
 #pragma once
 
 #include "gpu/CameraPass.h"
+#include "image/Image.h"
 #include "vk/Buffer.h"
 #include "vk/Descriptors.h"
 #include "vk/GpuImage.h"
@@ -66,6 +67,9 @@ public:
                        vk::GpuTimer* timer);
     // Once per frame after the submit: the next update rewrites the next cache.
     void advance() { ++mUpdates; }
+    // The last frame's cache-hit ratio per pixel (grey; shaders/modes/bidir/Interleave.h
+    // kTemporalHitsLayer says what it is); black without temporal caches.
+    Image cacheHits() const;
 
 private:
     const vk::Context* mContext;

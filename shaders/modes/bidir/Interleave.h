@@ -21,12 +21,19 @@ BL_NAMESPACE_BEGIN
 // Resolve pass, set 1 (set 0 is the camera set).
 BL_CONST uint kInterleaveSet = 1u;
 BL_CONST uint kInterleaveBindingFrame = 0u;   // rgba32f 2D array, kPathLayerCount layers: this frame's layers
-BL_CONST uint kInterleaveBindingCaches = 1u;  // rgba32f 2D array, 2 layers per cache: indirect1 + z, indirect2
+BL_CONST uint kInterleaveBindingCaches = 1u;  // rgba32f 2D array, 2 layers per cache (indirect1 + z, indirect2),
+                                              // then kTemporalHitsLayer
 BL_CONST uint kInterleaveBindingCameras = 2u; // storage InterleaveCache[kTemporalCaches]
 BL_CONST uint kInterleaveGroupSize = 8u;
 
 // The 2 x 2 sub-pixels of [TO12s] A.2: one indirect-light cache each.
 BL_CONST uint kTemporalCaches = 4u;
+// Layer of the cache image after the caches: the last frame's cache-hit ratio per pixel, x = the
+// sum of the other caches' weights h_i over their number, kTemporalCaches - 1 (the denominator
+// of their Eq. 1 less the current cache's h = 1, scaled to [0, 1]: their Fig. 1 b / 4 c); 0 where
+// the pixel saw no surface or no other cache was written yet.
+BL_CONST uint kTemporalHitsLayer = 2u * kTemporalCaches;
+BL_CONST uint kTemporalCacheLayers = kTemporalHitsLayer + 1u;
 // Their Eq. 3: h = exp(-log^2(z / z_c) / (2 sigma^2)) with 2 sigma^2 = 1e-4 "for all scenes" (the
 // default of the mode's temporal_depth_variance).
 BL_CONST float kTemporalTwoSigma2 = 1e-4f;
@@ -52,7 +59,8 @@ BL_STATIC_ASSERT(sizeof(InterleaveCache) == 144, "InterleaveCache layout");
 struct InterleaveEvaluate {
     uint n;      // sub-images per side (1: off)
     uint deferred; // 1: write the layers to the frame image for the resolve pass
-    uint pad0;
+    uint blurred;  // 1: the resolve pass blurs over the n x n sub-images (the pixel's estimate then
+                   // holds all K pairs: blInterleaveDensityPairs)
     uint pad1;
 };
 BL_STATIC_ASSERT(sizeof(InterleaveEvaluate) == 16, "InterleaveEvaluate layout");
@@ -86,6 +94,15 @@ BL_INLINE ivec2 blInterleaveSplit(ivec2 p, ivec2 block, uint n) {
 }
 BL_INLINE ivec2 blInterleaveGather(ivec2 t, ivec2 block, uint n) {
     return ivec2((t.x % block.x) * int(n) + t.x / block.x, (t.y % block.y) * int(n) + t.y / block.y);
+}
+
+// N of glossy suppression's sample densities ([TO12] Eq. 14-17: N p) at a pixel that evaluates
+// `used` of the frame's `pairs`: [TO12] N is the number of samples in the pixel's estimate. With
+// the blur (the paper's pipeline) that estimate mixes the n x n sub-images and holds all K pairs;
+// without it, only the sub-image's K / n^2. (Temporal caches would add the caches that hit; N
+// stays the frame's, as for progressive accumulation: the bias does not depend on the frames.)
+BL_INLINE float blInterleaveDensityPairs(uint pairs, uint used, uint blurred) {
+    return float(blurred != 0u ? pairs : used);
 }
 
 // 1D tap weight of the n x n blur at offset d in [-n/2, n/2]: for even n the two end taps share a

@@ -86,12 +86,13 @@ vec3 bidirHitAlbedo(GpuMaterial m, vec2 uv) { return kTextured ? blPackedTexture
 // Directional sample densities (samples per steradian, [TO12] Eq. 15-17) of the one-bounce path
 // x0 -> y -> x whose middle vertex y has area densities pA1 (VPL strategy) and pA2 (bundle
 // strategy), pLight = P(l) p_e of the light ray: with p the density of the strategy in use (the
-// sum for MIS) and N = K pairs, d_{y,0} = N p |y - x0|^2 / cos_{y,0} = N p pLight / pA1 and
+// sum for MIS) and N = gDensityPairs, d_{y,0} = N p |y - x0|^2 / cos_{y,0} = N p pLight / pA1 and
 // d_{y,3} = N p |y - x|^2 / cos_{y,3} = N p p_r / pA2; dY = 1 / (1 / d_{y,0} + 1 / d_{y,3})
 // (Eq. 13) at y, dX = d_{y,3} at x (the camera side is a delta). Zero densities give +inf.
+float gDensityPairs; // N of Eq. 14-17: the pairs in this pixel's estimate (Interleave.h blInterleaveDensityPairs)
 void oneBounceDensities(float pA1, float pA2, float pLight, out float dY, out float dX) {
     float p = kStrategy == kBidirStrategyVpl ? pA1 : (kStrategy == kBidirStrategyBundle ? pA2 : pA1 + pA2);
-    float np = float(push.pairs) * p;
+    float np = gDensityPairs * p;
     float inv0 = np > 0.0 && pLight > 0.0 ? pA1 / (np * pLight) : 0.0;
     float inv3 = np > 0.0 ? pA2 / (np * push.hemispherePdf) : 0.0;
     dY = inv0 + inv3 > 0.0 ? 1.0 / (inv0 + inv3) : 1e30;
@@ -238,7 +239,7 @@ vec3 bundleTerm(uint k, BidirVpl v, GpuMaterial mv, vec3 x, vec3 n, GpuMaterial 
     float weightX = abs(cosine) / push.hemispherePdf;
     if (kBounces >= 2u) {
         // Eq. 14 at x for the two-bounce path: d = N p_r (d on the light side is a delta).
-        vec3 fx2 = bidirBrdf(m, albedo, n, d, wo, float(push.pairs) * push.hemispherePdf);
+        vec3 fx2 = bidirBrdf(m, albedo, n, d, wo, gDensityPairs * push.hemispherePdf);
         twoBounce += twoBounceTerm(k, v, mv, y, ny, my, ay, wy) * fx2 * weightX;
     }
     if (kStrategy == kBidirStrategyVpl) {
@@ -307,6 +308,9 @@ void main() {
     const bool bundles = kStrategy != kBidirStrategyVpl || kBounces >= 2u;
     const bool vplUsed = kStrategy != kBidirStrategyBundle || kBounces >= 2u;
     uint used = 0u; // pairs of this pixel's sub-image
+    gDensityPairs = blInterleaveDensityPairs(
+        push.pairs, firstPair < push.pairs ? (push.pairs - firstPair + pairStride - 1u) / pairStride : 0u,
+        interleave.blurred);
     for (uint k = firstPair; k < push.pairs; k += pairStride, ++used) {
         BidirVpl v;
         GpuMaterial mv;

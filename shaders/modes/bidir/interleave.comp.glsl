@@ -79,6 +79,7 @@ void main() {
         int c = int(push.cache);
         imageStore(caches, ivec3(pixel, 2 * c), vec4(layers[kPathIndirect1], surface ? z : 0.0));
         imageStore(caches, ivec3(pixel, 2 * c + 1), vec4(layers[kPathIndirect2], 0.0));
+        float hits = 0.0; // the other caches' weights: the cache-hit image
         if (surface) {
             // Eq. 1: L = sum_i h_i L_i(gamma_i(s)) / sum_i h_i, the current cache with h = 1.
             vec3 sum1 = layers[kPathIndirect1], sum2 = layers[kPathIndirect2];
@@ -101,10 +102,12 @@ void main() {
                 sum1 += h * cached.rgb;
                 sum2 += h * imageLoad(caches, ivec3(q, int(2u * i + 1u))).rgb;
                 weights += h;
+                hits += h;
             }
             layers[kPathIndirect1] = sum1 / weights;
             layers[kPathIndirect2] = sum2 / weights;
         }
+        imageStore(caches, ivec3(pixel, int(kTemporalHitsLayer)), vec4(hits / float(kTemporalCaches - 1u), 0.0, 0.0, 0.0));
     }
     blAccumulate(pixel, layers);
 }

@@ -287,3 +287,97 @@ TEST_F(Interleaving, PlanSkipsReprojectionForStaticCameraImageUnchanged) {
     const ImageSet off = render(s, {"pairs_per_frame=4", "interleave=2"}, 6, 5);
     EXPECT_FALSE(same(bl::test::layerOf(skipped, "indirect1"), bl::test::layerOf(off, "indirect1")));
 }
+
+// The cache_hits layer ([TO12s] Fig. 1 b): the last frame's sum of the other caches' weights over
+// their number (3). On a static view with 2 sigma^2 = 1e4 every cache that saw a surface weighs
+// h ~ 1: after frame 1 one other cache is written (1/3 at every interior pixel), from frame 4 on all
+// three (1). With the paper's 1e-4 the back wall above the blocks (depth equal across sub-pixels:
+// the camera looks straight at it) still reads 1, and every pixel stays within [0, 1]. temporal =
+// off writes no such layer. (Mutations: dividing by 4 caches reads 0.25 / 0.75; counting the
+// current cache reads 4/3.)
+TEST_F(Interleaving, CacheHitsLayerIsTheShareOfAcceptedCaches) {
+    const Scene s = cornellPoint();
+    auto hits = [&](const std::string& variance, std::uint32_t frames) {
+        return bl::test::layerOf(render(s,
+                                        {"strategy=vpl", "bounces=1", "pairs_per_frame=4", "temporal=on",
+                                         "temporal_depth_variance=" + variance},
+                                        frames, 7),
+                                 "cache_hits");
+    };
+    // Interior pixels: all four sub-pixels see the box (its front edges lie in rows 0 and 31).
+    auto interiorRange = [&](const Image& im, double& lo, double& hi) {
+        lo = 1e30, hi = -1e30;
+        for (int y = 2; y < kResolution - 2; ++y)
+            for (int x = 2; x < kResolution - 2; ++x) lo = std::min(lo, double(im.at(x, y).x)), hi = std::max(hi, double(im.at(x, y).x));
+    };
+    double lo = 0.0, hi = 0.0;
+    interiorRange(hits("1e4", 1), lo, hi);
+    EXPECT_EQ(lo, 0.0);
+    EXPECT_EQ(hi, 0.0);
+    interiorRange(hits("1e4", 2), lo, hi);
+    std::printf("2 frames, 2 sigma^2 = 1e4: interior cache_hits %.6f .. %.6f\n", lo, hi);
+    EXPECT_NEAR(lo, 1.0 / 3.0, 1e-4);
+    EXPECT_NEAR(hi, 1.0 / 3.0, 1e-4);
+    interiorRange(hits("1e4", 6), lo, hi);
+    std::printf("6 frames, 2 sigma^2 = 1e4: interior cache_hits %.6f .. %.6f\n", lo, hi);
+    EXPECT_NEAR(lo, 1.0, 1e-4);
+    EXPECT_NEAR(hi, 1.0, 1e-4);
+    const Image paper = hits("1e-4", 6);
+    double wallLo = 1e30, all = 0.0, allLo = 1e30, allHi = -1e30;
+    for (int y = 0; y < kResolution; ++y) {
+        for (int x = 0; x < kResolution; ++x) {
+            const double h = paper.at(x, y).x;
+            allLo = std::min(allLo, h), allHi = std::max(allHi, h), all += h / (kResolution * kResolution);
+            if (y >= 8 && y <= 12 && x >= 12 && x <= 19) wallLo = std::min(wallLo, h);
+        }
+    }
+    std::printf("6 frames, 2 sigma^2 = 1e-4: back wall >= %.6f, image %.4f .. %.4f, mean %.4f\n", wallLo, allLo, allHi,
+                all);
+    EXPECT_NEAR(wallLo, 1.0, 1e-4);
+    EXPECT_GE(allLo, 0.0);
+    EXPECT_LE(allHi, 1.0 + 1e-6);
+    const ImageSet off = render(s, {"strategy=vpl", "bounces=1", "pairs_per_frame=4"}, 2, 7);
+    for (const auto& layer : off.layers) EXPECT_NE(layer.first, "cache_hits");
+}
+
+// Glossy suppression's N ([TO12] Eq. 14-17) is the number of pairs in the pixel's estimate: with
+// interleave = 2 and the blur off, a pixel of sub-image 0 of a 4-pair frame evaluates pair 0 only,
+// so its suppressed BRDFs (densities from N = 1) and its indirect light must equal to the bit a
+// 1-pair frame's without interleaving (the same VPL, index 0) on the glossy Cornell box, for clamp
+// and roughness. The old N = K = 4 at every pixel fails it (32^2, seed 3: 136 and 135 of the 137 lit
+// pixels of sub-image 0 equal with clamp and roughness; the suppression is strongest on few pixels).
+TEST_F(Interleaving, SuppressionDensityCountsThePixelsOwnPairs) {
+    Scene s = loadScene(bl::test::sourcePath("data/external/cornell-glossy-point.toml"));
+    s.camera.resolution = {kResolution, kResolution};
+    for (const std::string suppression : {"clamp", "roughness"}) {
+        const std::vector<std::string> common = {"strategy=vpl", "bounces=1", "vpl_source=traced",
+                                                 "suppression=" + suppression};
+        auto with = [&](std::vector<std::string> extra) {
+            auto v = common;
+            v.insert(v.end(), extra.begin(), extra.end());
+            return v;
+        };
+        const Image split = bl::test::layerOf(
+            render(s, with({"pairs_per_frame=4", "interleave=2", "interleave_filter=off"}), 1, 3), "indirect1");
+        const Image single = bl::test::layerOf(render(s, with({"pairs_per_frame=1"}), 1, 3), "indirect1");
+        const Image none = bl::test::layerOf(
+            render(s, {"strategy=vpl", "bounces=1", "vpl_source=traced", "pairs_per_frame=1", "suppression=none"}, 1, 3),
+            "indirect1");
+        int lit = 0, equal = 0, suppressed = 0;
+        for (int y = 0; y < kResolution; y += 2) {
+            for (int x = 0; x < kResolution; x += 2) { // sub-image 0
+                if (!(luminance(single.at(x, y)) > 0.0)) continue;
+                ++lit;
+                equal += split.at(x, y) == single.at(x, y) ? 1 : 0;
+                suppressed += single.at(x, y) != none.at(x, y) ? 1 : 0;
+            }
+        }
+        std::printf("%s: sub-image 0, %d lit pixels, %d equal to the 1-pair frame, %d changed by suppression\n",
+                    suppression.c_str(), lit, equal, suppressed);
+        EXPECT_GT(lit, kResolution * kResolution / 8);
+        EXPECT_EQ(equal, lit) << suppression;
+        if (suppression == "roughness") { // clamp changes 1 pixel of them at this size: equality alone
+            EXPECT_GT(suppressed, lit / 20) << "suppression must act for the comparison to mean anything";
+        }
+    }
+}
