@@ -11,12 +11,22 @@ namespace bl {
 // glossy pass), after the exchange's atomics.
 void AtlasMode::recordGlossyLights(VkCommandBuffer cmd) {
     Gpu& g = *mGpu;
+    shader::AtlasDirectPush push = glossyPush();
+    push.next = g.directions->sample(directionIndex(mIterations + 1)).omega;
+    push.glossy = shader::kAtlasDirectGlossy;
+    recordDirect(cmd, push, "glossy lights", g.glossyTexelCount);
+}
+
+shader::AtlasDirectPush AtlasMode::glossyPush() const {
+    const Gpu& g = *mGpu;
     shader::AtlasDirectPush push = directPush();
     push.received = atlasmode::addressOf(*mContext, g.received);
-    push.next = g.directions->sample(directionIndex(mIterations + 1)).omega;
-    push.glossy = 1u;
     push.materials = atlasmode::addressOf(*mContext, g.materials);
-    recordDirect(cmd, push, "glossy lights");
+    push.touched = atlasmode::addressOf(*mContext, g.touched);
+    push.glossyTexels = atlasmode::addressOf(*mContext, g.glossyTexels);
+    push.lightCache = atlasmode::addressOf(*mContext, g.lightCache);
+    push.glossyCount = g.glossyTexelCount;
+    return push;
 }
 
 // The final glossy gather of the direction just exchanged (its sender still unchanged): the
@@ -29,7 +39,7 @@ void AtlasMode::recordGather(VkCommandBuffer cmd, double weight) {
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     shader::AtlasGatherPush push{};
     push.pool = g.pool->view();
-    push.sender = atlasmode::addressOf(*mContext, g.sender);
+    push.gatheredIndirect = g.split ? atlasmode::addressOf(*mContext, g.gatheredIndirect) : glm::uvec2(0u);
     push.triangles = atlasmode::addressOf(*mContext, g.triangles);
     push.gathered = atlasmode::addressOf(*mContext, g.gathered);
     push.direction = atlasmode::addressOf(*mContext, g.direction);

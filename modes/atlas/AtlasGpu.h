@@ -34,6 +34,16 @@ struct AtlasMode::Gpu {
     vk::Buffer texels, triangles, charts, sender, received, sums, directRadiance, settled;
     vk::Buffer samples, firstSample; // TexelSamples of the direct pass (with lights only)
     vk::Buffer direction; // AtlasDirection, host-written before each direction's submission
+    // The sides each direction touched (AtlasTouched, the update's indirect dispatch) and the
+    // interleaved transfer's sender records (AtlasSenderRecord; `sender` is bounce's).
+    vk::Buffer touched, senders;
+    // delay_indirect > 0: the multi-bounce channel's received words, sums and gather sums.
+    bool split = false;
+    vk::Buffer receivedIndirect, sumsIndirect, gatheredIndirect;
+    // Glossy transfer with point/spot lights: (texel, first record) per glossy texel and the
+    // lights' cached light at their samples (AtlasLightRecord).
+    vk::Buffer glossyTexels, lightCache;
+    std::uint32_t glossyTexelCount = 0;
     // Glossy materials (interleaved transfer only): the glossy transfer atlas rides in `received`;
     // the final gather's per-pixel sums and the view sample's point-light highlight per pixel.
     bool glossy = false, glossyTransfer = false, shuffleDirections = false;

@@ -54,9 +54,12 @@ constexpr std::uint32_t kGridKeyY = 0xb5297a4du;
 // prefix again.
 constexpr std::uint32_t kShuffleBlock = 64;
 constexpr std::uint32_t kShuffleKey = 0x2545f491u;
-// Device bytes per texel: texel table (32), sender (2 x 16), received and glossy transfer (2 x 32),
-// sums (2 x 32), direct (2 x 16), settled (2 x 16), chart (4).
-constexpr VkDeviceSize kBytesPerTexel = 32 + 32 + 64 + 64 + 32 + 32 + 4;
+// Device bytes per texel: texel table (32), received and glossy transfer (2 x 32), sums (2 x 32),
+// direct (2 x 16), settled (2 x 16), chart (4), touched list (2 x 4), and either the sender
+// records (interleaved, 2 x 48) or the sender (bounce, 2 x 16); split channels (delay_indirect)
+// add received (2 x 16) and sums (2 x 32).
+constexpr VkDeviceSize kBytesPerTexel = 32 + 64 + 64 + 32 + 32 + 4 + 8 + 96;
+constexpr VkDeviceSize kSplitBytesPerTexel = 32 + 64;
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                         VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
@@ -100,6 +103,13 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
         throw Error("atlas: max_segments needs transfer=bounce (interleaved transfer mixes path lengths in every "
                     "direction's sender)");
     }
+    if (mSettings.getString(kTransfer) == "bounce" && mSettings.getInt(kDelayIndirect) != 0) {
+        throw Error("atlas: delay_indirect = " + std::to_string(mSettings.getInt(kDelayIndirect)) +
+                    " needs transfer=interleaved (bounce-by-bounce transfer sends direct light alone in its first "
+                    "pass already)");
+    }
+    mIndirectDirections = 0;
+    mIndirectWeight = 0.0;
     mSolutionTime.reset();
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
@@ -135,7 +145,9 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
                                         ? 0
                                         : shadowSide * shadowSide * 8 * 6 * scene.lights.size() +
                                               VkDeviceSize(g->texelCount) * (lightSamples * lightSamples * 32 + 4);
-    ctx->requireDeviceMemory(VkDeviceSize(g->texelCount) * kBytesPerTexel + lightBytes +
+    g->split = mSettings.getInt(kDelayIndirect) > 0;
+    ctx->requireDeviceMemory(VkDeviceSize(g->texelCount) * (kBytesPerTexel + (g->split ? kSplitBytesPerTexel : 0)) +
+                                 lightBytes +
                                  VkDeviceSize(width) * height *
                                      (gpu::CameraPass::bytesPerPixel(shader::kAtlasAccumLayers) + 16 + 4 +
                                       (scene.features().glossy ? 32 : 0)), // glossy gather + highlight
@@ -172,12 +184,15 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->texels = vk::makeBuffer(*ctx, std::span<const shader::AtlasTexel>(g->tables.texels), kStorage);
     g->triangles = vk::makeBuffer(*ctx, std::span<const shader::AtlasTriangle>(g->tables.triangles), kStorage);
     g->charts = vk::makeBuffer(*ctx, std::span<const std::int32_t>(g->tables.charts), kStorage);
-    // Sender starts as the emission (front sides); sums and received start at zero.
-    std::vector<glm::vec4> sender(shader::kAtlasSides * texels, glm::vec4(0.0f));
-    for (std::size_t t = 0; t < texels; ++t) {
+    // Bounce: the sender starts as the emission (front sides); interleaved transfer keeps sender
+    // records instead (written before the first direction). Sums and received start at zero.
+    std::vector<glm::vec4> sender(bounce() ? shader::kAtlasSides * texels : 0, glm::vec4(0.0f));
+    for (std::size_t t = 0; t < sender.size() / shader::kAtlasSides; ++t) {
         sender[shader::kAtlasSides * t + shader::kAtlasFront] = glm::vec4(g->tables.texels[t].emission, 0.0f);
     }
     g->sender = vk::makeBuffer(*ctx, std::span<const glm::vec4>(sender), kStorage);
+    g->senders = vk::Buffer(*ctx, (bounce() ? 1 : shader::kAtlasSides * texels) * sizeof(shader::AtlasSenderRecord),
+                            kStorage, vk::MemoryUse::Device);
     g->received = vk::makeBuffer(*ctx,
                                  std::span<const glm::vec4>(std::vector<glm::vec4>(
                                      shader::kAtlasSides * texels * shader::kAtlasReceivedWords / 4)),
@@ -188,6 +203,15 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
                                 kStorage);
     g->sums = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(2 * shader::kAtlasSides * texels)),
                              kStorage);
+    const std::vector<glm::vec4> zeroSlots(shader::kAtlasSides * texels);
+    std::vector<std::uint32_t> touched(shader::kAtlasTouchedHeader + shader::kAtlasSides * texels, 0u);
+    touched[2] = touched[3] = 1u; // the update's indirect dispatch is (groups, 1, 1)
+    g->touched = vk::makeBuffer(*ctx, std::span<const std::uint32_t>(touched), kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+    if (g->split) {
+        g->receivedIndirect = vk::makeBuffer(*ctx, std::span<const glm::vec4>(zeroSlots), kStorage);
+        g->sumsIndirect =
+            vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(2 * zeroSlots.size())), kStorage);
+    }
     g->direction = vk::Buffer(*ctx, sizeof(shader::AtlasDirection),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
                               vk::MemoryUse::Upload);
@@ -232,6 +256,9 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     if (g->glossy) {
         const std::vector<glm::vec4> pixels(std::size_t(width) * height);
         g->gathered = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
+        if (g->split) {
+            g->gatheredIndirect = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
+        }
         VkDescriptorSetLayout cameraOnly[] = {g->camera->setLayout()};
         g->gatherLayout = vk::makePipelineLayout(device, cameraOnly, sizeof(shader::AtlasGatherPush), cs);
         g->gather = vk::makeComputePipeline(device, kSpv_modes_atlas_gather_comp, g->gatherLayout.get());
@@ -254,7 +281,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
 
 // Builds and sorts this direction's bundle; grows the pool and builds again when it did not fit,
 // and refuses what the limits cannot hold.
-void AtlasMode::buildBundle(const IterationInfo& info) {
+shader::AtlasDirection AtlasMode::buildBundle(const IterationInfo& info) {
     Gpu& g = *mGpu;
     const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
     const BundleDirection dir = g.directions->sample(directionIndex(mIterations));
@@ -281,7 +308,6 @@ void AtlasMode::buildBundle(const IterationInfo& info) {
     params.inverseDensity = 1.0f / density;
     params.glossy = g.glossyTransfer ? 1u : 0u;
     params.next = g.directions->sample(directionIndex(mIterations + 1)).omega;
-    std::memcpy(g.direction.data(), &params, sizeof(params));
 
     for (;;) {
         const auto start = std::chrono::steady_clock::now();
@@ -297,7 +323,7 @@ void AtlasMode::buildBundle(const IterationInfo& info) {
         const BundlePoolStatus status = g.pool->status();
         if (!status.overflowed()) {
             g.nodesLast = status.requested;
-            return;
+            return params;
         }
         if (!g.pool->grow(status)) {
             throw Error("atlas: a " + std::to_string(frame.width) + "^2 bundle needs " + std::to_string(status.requested) +
@@ -334,27 +360,51 @@ void AtlasMode::lightDirect(double time) {
     g.scene->setLightTime(*mContext, time); // keyframed lights where they are at this time
     shader::AtlasDirectPush push = directPush();
     push.direct = addressOf(*mContext, g.directRadiance);
-    push.sender = addressOf(*mContext, g.sender);
+    push.sender = bounce() ? addressOf(*mContext, g.sender) : glm::uvec2(0u); // interleaved: sender records
     push.directIntoSender = bounce() ? 0u : 1u;
+    if (g.glossyTransfer) {
+        // The glossy texels (their lobes take the lights' light toward each next direction) and
+        // the first cache record of each: one per sample and light.
+        std::vector<glm::uvec2> glossyTexels;
+        std::uint32_t records = 0;
+        for (std::uint32_t t = 0; t < g.texelCount; ++t) {
+            const shader::AtlasTexel& texel = g.tables.texels[t];
+            const std::uint32_t m = texel.material;
+            const bool glossy = m < mScene->materials.size() && toGpuMaterial(mScene->materials[m]).specular != glm::vec3(0.0f);
+            if (!(texel.inverseArea > 0.0f) || !glossy) continue;
+            glossyTexels.emplace_back(t, records);
+            records += (samples.first[t + 1] - samples.first[t]) * g.shadows->lightCount();
+        }
+        g.glossyTexelCount = static_cast<std::uint32_t>(glossyTexels.size());
+        g.glossyTexels = vk::makeBuffer(*mContext, std::span<const glm::uvec2>(glossyTexels), kStorage);
+        g.lightCache = vk::Buffer(*mContext, std::max<VkDeviceSize>(records, 1) * sizeof(shader::AtlasLightRecord),
+                                  kStorage, vk::MemoryUse::Device);
+    }
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         g.shadows->record(cmd, time, &g.timer);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-        recordDirect(cmd, push, "direct");
+        recordDirect(cmd, push, "direct", g.texelCount);
+        if (g.glossyTransfer && g.glossyTexelCount > 0) {
+            shader::AtlasDirectPush cache = glossyPush();
+            cache.glossy = shader::kAtlasDirectGlossyCache;
+            recordDirect(cmd, cache, "glossy light cache", g.glossyTexelCount);
+        }
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     });
     g.timer.collect();
 }
 
-// One dispatch of direct.comp.glsl over every texel (the direct atlas, or with push.glossy the
-// lights' share of the glossy transfer atlas), timed as `name`.
-void AtlasMode::recordDirect(VkCommandBuffer cmd, const shader::AtlasDirectPush& push, const char* name) {
+// One dispatch of direct.comp.glsl over `count` invocations (every texel for the direct atlas, the
+// glossy texels for the lights' share of the glossy transfer atlas), timed as `name`.
+void AtlasMode::recordDirect(VkCommandBuffer cmd, const shader::AtlasDirectPush& push, const char* name,
+                             std::uint32_t count) {
     Gpu& g = *mGpu;
     const std::uint32_t scope = g.timer.start(cmd, name);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.direct.get());
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.directLayout.get(), 0, 1, &g.directSet, 0, nullptr);
     vkCmdPushConstants(cmd, g.directLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(g.texelCount, shader::kAtlasGroupSize), 1, 1);
+    vkCmdDispatch(cmd, vk::groupCount(count, shader::kAtlasGroupSize), 1, 1);
     g.timer.stop(cmd, scope);
 }
 
@@ -387,60 +437,107 @@ void AtlasMode::iterate(const IterationInfo& info) {
         ++mIterations; // emitters only: nothing is reflected
         return;
     }
-    buildBundle(info);
+    shader::AtlasDirection params = buildBundle(info);
 
     const std::uint32_t bundlePixels = g.pool->slotPixels();
     shader::AtlasExchangePush exchange{};
     exchange.pool = g.pool->view();
     exchange.texels = addressOf(*mContext, g.texels);
     exchange.triangles = addressOf(*mContext, g.triangles);
-    exchange.sender = addressOf(*mContext, g.sender);
     exchange.received = addressOf(*mContext, g.received);
     exchange.direction = addressOf(*mContext, g.direction);
     exchange.materials = addressOf(*mContext, g.materials);
     exchange.width = static_cast<std::uint32_t>(g.atlas.maps.width);
     exchange.height = static_cast<std::uint32_t>(g.atlas.maps.height);
     exchange.pages = static_cast<std::uint32_t>(g.atlas.maps.pages);
+    // Interleaved: direction j weighs j^k. Bounce: the sender is fixed within a pass, so its
+    // directions weigh the same, and the pass's last direction settles it (the last pass allowed
+    // by max_segments never settles: it keeps refining). Split: the multi-bounce channel's
+    // directions are counted from the first with indirect light.
+    const double k = mSettings.getDouble(kWeighting);
+    const auto passDirections = static_cast<std::uint32_t>(mSettings.getInt(kBounceDirections));
+    const double weight = bounce() ? 1.0 : std::pow(double(mIterations + 1), k);
+    const bool indirect = g.split && mIterations >= std::uint32_t(mSettings.getInt(kDelayIndirect));
+    const double weightIndirect = indirect ? std::pow(double(mIndirectDirections + 1), k) : 0.0;
+
+    // How this direction's sender is formed: the estimate of the directions before it.
+    params.texels = exchange.texels;
+    params.senders = addressOf(*mContext, g.senders);
+    params.fixedSender = addressOf(*mContext, g.sender);
+    params.touched = addressOf(*mContext, g.touched);
+    params.scale = mTotalWeight > 0.0 ? float(1.0 / mTotalWeight) : 0.0f;
+    params.previous = mIterations - 1u; // the first direction's ~0u matches no stored transfer
+    params.transfer = bounce() ? shader::kAtlasTransferBounce : shader::kAtlasTransferInterleaved;
+    if (g.split) {
+        params.split = 1u;
+        params.sumsIndirect = addressOf(*mContext, g.sumsIndirect);
+        params.receivedIndirect = addressOf(*mContext, g.receivedIndirect);
+        params.indirectScale = mIndirectWeight > 0.0 ? float(1.0 / mIndirectWeight) : 0.0f;
+        params.indirect = indirect ? 1u : 0u;
+        params.weightIndirect = float(weightIndirect);
+        params.clearIndirect = indirect && mIndirectWeight == 0.0 ? 1u : 0u;
+    }
+    std::memcpy(g.direction.data(), &params, sizeof(params));
+
     shader::AtlasUpdatePush update{};
     update.texels = exchange.texels;
-    update.sender = exchange.sender;
+    update.sender = params.fixedSender;
     update.received = exchange.received;
     update.sums = addressOf(*mContext, g.sums);
     update.texelCount = g.texelCount;
-    // Interleaved: direction j weighs j^k. Bounce: the sender is fixed within a pass, so its
-    // directions weigh the same, and the pass's last direction settles it (the last pass allowed
-    // by max_segments never settles: it keeps refining).
-    const auto passDirections = static_cast<std::uint32_t>(mSettings.getInt(kBounceDirections));
-    const double weight = bounce() ? 1.0 : std::pow(double(mIterations + 1), mSettings.getDouble(kWeighting));
     update.weight = float(weight);
     update.inverseTotalWeight = float(1.0 / (mTotalWeight + weight));
     update.clearSums = mTotalWeight == 0.0 ? 1u : 0u;
     update.direct = addressOf(*mContext, g.directRadiance);
     update.settled = addressOf(*mContext, g.settled);
-    update.transfer = bounce() ? shader::kAtlasTransferBounce : shader::kAtlasTransferInterleaved;
+    update.transfer = params.transfer;
     const bool lastPass = maxSegments != 0 && mPass + 1 >= maxSegments;
     update.settle = bounce() && !lastPass && std::uint32_t(mTotalWeight + weight) >= passDirections ? 1u : 0u;
     update.directIntoSender = mPass == 1 ? 1u : 0u;
+    // A settling pass rewrites every side's sender; otherwise only the touched sides change.
+    update.mode = update.settle != 0u ? shader::kAtlasUpdateAll : shader::kAtlasUpdateListed;
+    update.touched = params.touched;
+    update.senders = params.senders;
+    update.receivedIndirect = params.receivedIndirect;
+    update.sumsIndirect = params.sumsIndirect;
+    update.weightIndirect = float(weightIndirect);
+    update.iteration = mIterations;
     const auto start = std::chrono::steady_clock::now();
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
+        const std::uint32_t slots = shader::kAtlasSides * g.texelCount;
+        if (mIterations == 0 && !bounce()) { // the sender records' constant part, once
+            shader::AtlasUpdatePush init = update;
+            init.mode = shader::kAtlasUpdateInit;
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.update.get());
+            vkCmdPushConstants(cmd, g.updateLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(init), &init);
+            vkCmdDispatch(cmd, vk::groupCount(slots, shader::kAtlasGroupSize), 1, 1);
+        }
+        vkCmdFillBuffer(cmd, g.touched.get(), 0, 2 * sizeof(std::uint32_t), 0u); // count, groups
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
         std::uint32_t scope = g.timer.start(cmd, "exchange");
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.exchange.get());
         vkCmdPushConstants(cmd, g.exchangeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(exchange), &exchange);
         vkCmdDispatch(cmd, vk::groupCount(bundlePixels, shader::kAtlasGroupSize), 1, 1);
         g.timer.stop(cmd, scope);
-        if (g.glossyTransfer && g.shadows) {
+        if (g.glossyTransfer && g.shadows && g.glossyTexelCount > 0) {
             vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
             recordGlossyLights(cmd);
         }
         if (g.glossy) {
             recordGather(cmd, weight);
         }
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT);
         scope = g.timer.start(cmd, "update");
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.update.get());
         vkCmdPushConstants(cmd, g.updateLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(update), &update);
-        vkCmdDispatch(cmd, vk::groupCount(shader::kAtlasSides * g.texelCount, shader::kAtlasGroupSize), 1, 1);
+        if (update.mode == shader::kAtlasUpdateListed) {
+            vkCmdDispatchIndirect(cmd, g.touched.get(), shader::kAtlasTouchedDispatchOffset);
+        } else {
+            vkCmdDispatch(cmd, vk::groupCount(slots, shader::kAtlasGroupSize), 1, 1);
+        }
         g.timer.stop(cmd, scope);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
@@ -449,6 +546,10 @@ void AtlasMode::iterate(const IterationInfo& info) {
     g.wallExchange.totalMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     ++g.wallExchange.count;
     mTotalWeight += weight;
+    if (indirect) {
+        mIndirectWeight += weightIndirect;
+        ++mIndirectDirections;
+    }
     if (update.settle != 0u) {
         ++mPass;
         mTotalWeight = 0.0;
@@ -481,6 +582,12 @@ ImageSet AtlasMode::resolve() {
     push.direct = addressOf(*mContext, g.directRadiance);
     push.gathered = g.glossy ? addressOf(*mContext, g.gathered) : glm::uvec2(0u);
     push.highlight = g.highlightPipeline ? addressOf(*mContext, g.highlight) : glm::uvec2(0u);
+    if (g.split) {
+        push.split = 1u;
+        push.sumsIndirect = addressOf(*mContext, g.sumsIndirect);
+        push.gatheredIndirect = g.glossy ? addressOf(*mContext, g.gatheredIndirect) : glm::uvec2(0u);
+        push.indirectScale = mIndirectWeight > 0.0 ? float(1.0 / mIndirectWeight) : 0.0f;
+    }
     for (std::uint32_t k = 0; k < samples; ++k) {
         const gpu::CameraSample sample = g.camera->sample(k, samples > 1, mTime);
         push.samplePosition = sample.samplePosition;
@@ -534,6 +641,13 @@ AtlasMode::TexelRadiance AtlasMode::readTexels() const {
     for (std::size_t s = 0; s < slots; ++s) {
         out.reflected[s] = glm::vec3(sums[2 * s] + sums[2 * s + 1]) * scale + glm::vec3(settled[s]) +
                            directScale() * glm::vec3(direct[s]);
+    }
+    if (g.split) { // the multi-bounce channel
+        g.sumsIndirect.download(*mContext, sums.data(), sums.size() * sizeof(glm::vec4));
+        const float indirectScale = mIndirectWeight > 0.0 ? float(1.0 / mIndirectWeight) : 0.0f;
+        for (std::size_t s = 0; s < slots; ++s) {
+            out.reflected[s] += glm::vec3(sums[2 * s] + sums[2 * s + 1]) * indirectScale;
+        }
     }
     for (const shader::AtlasTexel& t : g.tables.texels) {
         out.emission.push_back(t.emission);

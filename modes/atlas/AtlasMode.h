@@ -37,6 +37,25 @@
 // n^-1.5), at the price of an effective sample count n (2k + 1) / (k + 1)^2 (k = 2: 0.56 n).
 // k = 0 is the plain mean.
 //
+// Cost per direction. The update visits only the texel sides the direction touched (the exchange
+// and the glossy lights pass append them to a list, AtlasTouched; an indirect dispatch), not the
+// whole atlas: interleaved transfer keeps no sender atlas that every side's new mean would have to
+// rewrite, but per side a record (AtlasSenderRecord: emission + direct, the sum, the glossy
+// transfer and the direction that stored it) from which the exchange forms the sender as
+// base + sum / W + glossy, the same float steps as the rewritten atlas (images equal to the last
+// bit but for the exchange's atomic float adds, whose order varies run to run).
+//
+// Delayed indirect light ([HHGM10] section 6.4, `delay_indirect` = N > 0). The first N
+// directions send emitters' light only; from direction N + 1 on reflected light is sent too. The
+// estimate is then kept as two channels, summed apart: one-bounce (what emitters and the
+// environment send, received once; the same fixed sender every direction) and multi-bounce (what
+// reflecting surfaces send: direct + both estimates + glossy transfer). Each channel is a j^k-
+// weighted mean over its own directions (the multi-bounce channel's j counts from its first
+// direction), so the channel that starts late forgets its first directions' missing bounces and
+// the sum stays consistent: L = E + P + D + I with D = T E and I = T (P + D + I) (T the transport
+// of one bounce, P point/spot light) is L = E + P + T L. With split channels the one-bounce
+// estimate is light of two segments and goes to layer `direct`, the multi-bounce one to `rest`.
+//
 // Camera view. The mode's own raster (AtlasViewPass) gives each pixel its atlas uv, page and side;
 // the shade pass adds the emission seen (G-buffer, front faces), the environment behind the scene
 // and the reflected radiance of that texel side, bilinear between texel centres of the same chart.
@@ -75,6 +94,14 @@
 //                                         device-local heap)
 //   glossy             transfer           transfer (glossy transfer atlas + gather), gather (toward the
 //                                         eye only), off (albedo only)
+//   transfer           interleaved        interleaved (Gauss-Seidel) or bounce (one pass per bounce)
+//   bounce_directions  256     directions transfer = bounce: directions per pass
+//   max_segments       0       segments   transfer = bounce: longest path kept (0: no limit)
+//   delay_indirect     0       directions N: the first N directions direct light only, one-bounce and
+//                                         multi-bounce estimates apart (0: one estimate; interleaved only)
+//   importance_offset  1.0                directions = importance: offset of the environment's density
+//   shadow_resolution  512     texels     side of each point/spot light's shadow cube face
+//   light_samples      2       per side   n x n points per texel gather point/spot light
 #pragma once
 
 #include "modes/Mode.h"
@@ -105,6 +132,7 @@ public:
     static constexpr const char* kLightSamples = "light_samples";
     static constexpr const char* kMemoryCap = "memory_cap_mib";
     static constexpr const char* kGlossy = "glossy";
+    static constexpr const char* kDelayIndirect = "delay_indirect";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);
@@ -131,10 +159,12 @@ public:
 
 private:
     struct Gpu;
-    void buildBundle(const IterationInfo& info);
+    // Builds and sorts this direction's bundle; its parameters (the sender's left for iterate()).
+    shader::AtlasDirection buildBundle(const IterationInfo& info);
     // Point/spot lights at scene time `time` into the direct atlas and the first sender.
     void lightDirect(double time);
-    void recordDirect(VkCommandBuffer cmd, const shader::AtlasDirectPush& push, const char* name);
+    void recordDirect(VkCommandBuffer cmd, const shader::AtlasDirectPush& push, const char* name, std::uint32_t count);
+    shader::AtlasDirectPush glossyPush() const; // directPush() with the glossy passes' buffers
     // Glossy materials: point/spot lights into the glossy transfer atlas and the final glossy
     // gather after a direction's exchange (w_j = weight); the lights' highlight of a view sample.
     void recordGlossyLights(VkCommandBuffer cmd);
@@ -154,6 +184,9 @@ private:
     std::unique_ptr<Gpu> mGpu;
     std::uint32_t mIterations = 0;
     double mTotalWeight = 0.0; // sum of w_j over the directions in the sums (bounce: of the current pass)
+    // delay_indirect > 0: the multi-bounce channel's directions so far and the sum of their weights.
+    std::uint32_t mIndirectDirections = 0;
+    double mIndirectWeight = 0.0;
     std::uint32_t mPass = 1;   // transfer = bounce: the pass (bounce) under way, 1-based
     double mTime = 0.0; // scene time of the last direction: the view renders the scene there
     std::optional<double> mSolutionTime; // scene time of the geometry and lights the atlas holds

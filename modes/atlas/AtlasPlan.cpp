@@ -44,6 +44,11 @@ std::vector<ParamSpec> AtlasMode::parameters() {
          "glossy lobes: transfer = glossy transfer atlas + final gather toward the eye ([HHGM10] 5.3-5.4); gather = "
          "toward the eye only (no glossy bounce between surfaces); off = their albedo only (diffuse)",
          0, 0, {"transfer", "gather", "off"}},
+        {kDelayIndirect, std::int64_t{0}, "directions",
+         "N: the first N directions carry direct light only (emitters send, reflected light does not), indirect light "
+         "from direction N + 1 on ([HHGM10] 6.4); the one-bounce and multi-bounce estimates are summed apart, each "
+         "with its own j^k weights (0: one estimate, as before; interleaved transfer only)",
+         0, 1 << 24, {}},
         {kMemoryCap, std::int64_t{0}, "MiB",
          "node storage limit of the bundle pool (0: half the largest device-local heap); a direction that needs more is "
          "refused",
@@ -64,7 +69,16 @@ std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {
     exchange += f.emissiveMeshes ? "; emitters are the source" : "; no emissive meshes";
     exchange += f.environment ? "; environment at list ends" : "; no environment: list ends receive nothing";
     p.push_back({"exchange", true, exchange});
-    p.push_back({"update", true, "received radiance into compensated sums per texel side; sender rewritten"});
+    p.push_back({"update", true,
+                 "received radiance into compensated sums, only for the texel sides the direction touched (a list "
+                 "the exchange appends to); the sender is formed where it is read"});
+    const auto delay = mSettings.getInt(kDelayIndirect);
+    if (delay > 0) {
+        p.push_back({"delayed indirect", true,
+                     "directions 1-" + std::to_string(delay) +
+                         ": emitters send, reflected light does not; one-bounce (layer direct) and multi-bounce "
+                         "(layer rest) estimates summed apart"});
+    }
     if (f.shadowCastingLights() > 0) {
         const auto n = std::to_string(mSettings.getInt(kLightSamples));
         p.push_back({"shadow maps", true,

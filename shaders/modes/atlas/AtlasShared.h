@@ -46,6 +46,10 @@ struct AtlasSample {
 BL_STATIC_ASSERT(sizeof(AtlasSample) == 32, "AtlasSample layout");
 
 // Direct pass: one invocation per texel averages point/spot light over its samples, both sides.
+// Glossy passes (glossy transfer with point/spot lights): one invocation per glossy texel of a
+// list; kAtlasDirectGlossyCache (once, at set-up) keeps each sample's light per light (direction,
+// irradiance, the side it lights), kAtlasDirectGlossy (per direction) evaluates the lobes toward
+// the next direction from it: the shadow lookups run once, not per direction.
 struct AtlasDirectPush {
     uvec2 samples;    // AtlasSample[] grouped by texel
     uvec2 first;      // uint per texel + 1: its first sample
@@ -58,17 +62,52 @@ struct AtlasDirectPush {
     uint directIntoSender; // 1: sender = emission + direct (interleaved); 0: emission only (bounce pass 1)
     uvec2 received;   // glossy pass: uint[kAtlasReceivedWords] per texel side, its glossy transfer words
     vec3 next;        // glossy pass: the next direction omega_{i+1}
-    uint glossy;      // 1: the glossy pass of a direction (else the direct atlas, once)
-    uvec2 materials;  // glossy pass: GpuMaterial[]
+    uint glossy;      // kAtlasDirectAtlas, kAtlasDirectGlossyCache or kAtlasDirectGlossy
+    uvec2 materials;  // glossy passes: GpuMaterial[]
+    uvec2 touched;    // glossy pass: AtlasTouched (the sides it writes join the update's list)
+    uvec2 glossyTexels; // glossy passes: uvec2 (texel, first record of its samples) per glossy texel
+    uvec2 lightCache; // glossy passes: AtlasLightRecord per sample of a glossy texel and light
+    uint glossyCount; // entries of glossyTexels
     uint pad0;
-    uint pad1;
+    uvec2 pad1;       // a multiple of 16 bytes (the struct's std430 size in the shader's block)
 };
-BL_STATIC_ASSERT(sizeof(AtlasDirectPush) == 96, "AtlasDirectPush layout");
+BL_STATIC_ASSERT(sizeof(AtlasDirectPush) == 128, "AtlasDirectPush layout");
+BL_CONST uint kAtlasDirectAtlas = 0u;
+BL_CONST uint kAtlasDirectGlossy = 1u;
+BL_CONST uint kAtlasDirectGlossyCache = 2u;
+
+// One light at one sample point of a glossy texel: the direction toward the light and its shadowed
+// irradiance on the side it lights (blShadowedLight), side kAtlasSides where it lights neither.
+struct AtlasLightRecord {
+    vec3 toLight;
+    uint side;
+    vec3 irradiance;
+    uint pad0;
+};
+BL_STATIC_ASSERT(sizeof(AtlasLightRecord) == 32, "AtlasLightRecord layout");
 BL_CONST uint kAtlasDirectSet = 0u;
 BL_CONST uint kAtlasDirectBindingLights = 0u;     // GpuLight[] storage buffer
 BL_CONST uint kAtlasDirectBindingShadowMaps = 1u; // r32f 2D-array storage image (ShadowCubePass)
 
-// Parameters of one direction, written by the host before its submission.
+// What a texel side sends under interleaved transfer, in parts that change only where the side
+// received light: the sender radiance is base + sum / W + glossy (AtlasBuffers.glsl:
+// blAtlasSender), W the total weight of the directions before, so the update rewrites only the
+// sides a direction touched while every side's mean follows W. One record (48 bytes, read together).
+struct AtlasSenderRecord {
+    vec3 base;   // emission + direct (split: direct only), written once before the first direction
+    uint tag;    // index of the direction that stored `glossy`: it is sent by the next direction only
+    vec3 sum;    // the weighted sum over directions (sum + compensation; the one-bounce channel where split)
+    uint pad0;
+    vec3 glossy; // glossy transfer toward the next direction (the lobes' reflection)
+    uint pad1;
+};
+BL_STATIC_ASSERT(sizeof(AtlasSenderRecord) == 48, "AtlasSenderRecord layout");
+
+// Parameters of one direction, written by the host before its submission: the direction's own
+// numbers, and how the sender radiance of a texel side is formed (AtlasBuffers.glsl:
+// blAtlasSender, from AtlasSenderRecord). Split channels (delay_indirect, [HHGM10] section 6.4): the one-bounce
+// estimate (light of emitters and environment reflected once) and the multi-bounce estimate are
+// summed apart; emitters send into the first, reflected light into the second.
 struct AtlasDirection {
     vec3 environmentForward;  // environment radiance arriving from +omega (escapes past a list's end)
     float weight;             // a_pix / (pi p_r): bundle pixel area over (pi x hemisphere density)
@@ -76,13 +115,37 @@ struct AtlasDirection {
     uint glossy;              // 1: glossy texels store what they reflect toward +-next (glossy transfer)
     vec3 next;                // the next direction omega_{i+1} (glossy transfer atlas, [HHGM10] 5.4)
     float inverseDensity;     // 1 / p_r(omega): the final glossy gather's direction weight
+    uvec2 texels;             // AtlasTexel[] (emission, split only)
+    uvec2 senders;            // interleaved: AtlasSenderRecord per side
+    uvec2 sumsIndirect;       // split: vec4[2] per side, the multi-bounce weighted sum
+    uvec2 pad0;
+    uvec2 pad1;
+    uvec2 fixedSender;        // bounce: vec4 per side, the pass's sender
+    uvec2 touched;            // AtlasTouched list of the sides this direction changes
+    uvec2 receivedIndirect;   // split: uint[4] per side, this direction's multi-bounce reflection
+    float scale;              // 1 / sum of w over the directions before this one (0: none)
+    float indirectScale;      // split: the same over the multi-bounce channel's directions
+    uint previous;            // index of the previous direction: its glossy transfer is sent now
+    uint transfer;            // kAtlasTransferInterleaved or kAtlasTransferBounce
+    uint split;               // 1: one-bounce and multi-bounce channels apart (delay_indirect > 0)
+    uint indirect;            // split: 1 once indirect light is enabled (reflected light is sent)
+    float weightIndirect;     // split: w of this direction in the multi-bounce channel
+    uint clearIndirect;       // split: 1 on the multi-bounce channel's first direction (gather sums)
 };
-BL_STATIC_ASSERT(sizeof(AtlasDirection) == 48, "AtlasDirection layout");
+BL_STATIC_ASSERT(sizeof(AtlasDirection) == 144, "AtlasDirection layout");
+
+// The list of texel sides a direction changed (exchange and glossy lights append, the update
+// visits only these): words [count, groups, 1, 1, slot...]; words 1..3 are the update's
+// indirect dispatch (groups of kAtlasGroupSize), reset to count = groups = 0 per direction.
+BL_CONST uint kAtlasTouchedHeader = 4u;
+BL_CONST uint kAtlasTouchedDispatchOffset = 4u; // bytes: the dispatch's (groups, 1, 1)
 
 // Words per texel side of the `received` atlas: this direction's diffuse reflection (float bits,
-// rgb in 0..2) and the glossy transfer atlas (rgb in 4..6): the radiance the side's glossy lobe
-// reflects toward the next direction, sent by the next direction's exchange.
+// rgb in 0..2; the one-bounce channel where split), word 3 set once the side is in the touched
+// list, and the glossy transfer atlas (rgb in 4..6): the radiance the side's glossy lobe reflects
+// toward the next direction, sent by the next direction's exchange.
 BL_CONST uint kAtlasReceivedWords = 8u;
+BL_CONST uint kAtlasReceivedTouched = 3u;
 BL_CONST uint kAtlasReceivedGlossy = 4u;
 
 // Exchange pass: one invocation per bundle pixel walks its sorted list.
@@ -90,10 +153,10 @@ struct AtlasExchangePush {
     BundlePoolView pool;
     uvec2 texels;     // AtlasTexel[]
     uvec2 triangles;  // AtlasTriangle[] per GpuScene triangle
-    uvec2 sender;     // vec4 per texel side: radiance leaving it (emission + reflected estimate)
+    uvec2 pad1;
     uvec2 received;   // uint[kAtlasReceivedWords] per texel side: this direction's reflected radiance and
                       // the glossy transfer atlas (float bits, CAS adds)
-    uvec2 direction;  // AtlasDirection
+    uvec2 direction;  // AtlasDirection (with how the sender is formed)
     uvec2 materials;  // GpuMaterial[] (the glossy lobes of the glossy transfer)
     uint width;       // atlas page
     uint height;
@@ -102,11 +165,12 @@ struct AtlasExchangePush {
 };
 BL_STATIC_ASSERT(sizeof(AtlasExchangePush) == 128, "AtlasExchangePush layout");
 
-// Update pass: one invocation per texel side folds the direction's received radiance into the
-// compensated sum over directions and rewrites the sender.
+// Update pass: one invocation per texel side of the touched list (or, where a bounce pass
+// settles, per texel side) folds the direction's received radiance into the compensated sums over
+// directions, clears the receiver and keeps the glossy transfer for the next direction.
 struct AtlasUpdatePush {
     uvec2 texels;
-    uvec2 sender;
+    uvec2 sender;     // bounce: vec4 per texel side, the pass's sender (rewritten where a pass settles)
     uvec2 received;
     uvec2 sums;       // vec4[2] per texel side: sum over directions and its Neumaier compensation
     uint texelCount;  // width * height * pages
@@ -118,9 +182,18 @@ struct AtlasUpdatePush {
     uint transfer;    // kAtlasTransferInterleaved or kAtlasTransferBounce
     uint settle;      // bounce: this direction ends its pass (its mean settles and becomes the sender)
     uint directIntoSender; // bounce: the settling pass's sender gets the direct atlas too (pass 1 ends)
-    uint pad0;
+    uint mode;        // kAtlasUpdateListed, kAtlasUpdateAll or kAtlasUpdateInit
+    uvec2 touched;    // AtlasTouched
+    uvec2 senders;    // interleaved: AtlasSenderRecord per side (sum, glossy transfer and its tag)
+    uvec2 receivedIndirect; // split: uint[4] per side, multi-bounce reflection (0: not split)
+    uvec2 sumsIndirect;     // split: vec4[2] per side
+    float weightIndirect;   // split: w of this direction in the multi-bounce channel (0: not yet enabled)
+    uint iteration;   // index of this direction (the tag of the glossy transfer it stores)
 };
-BL_STATIC_ASSERT(sizeof(AtlasUpdatePush) == 80, "AtlasUpdatePush layout");
+BL_STATIC_ASSERT(sizeof(AtlasUpdatePush) == 120, "AtlasUpdatePush layout");
+BL_CONST uint kAtlasUpdateListed = 0u; // the sides on the touched list
+BL_CONST uint kAtlasUpdateAll = 1u;    // every side (a bounce pass settles)
+BL_CONST uint kAtlasUpdateInit = 2u;   // every side's sender record, once before the first direction
 
 // Transfer schemes ([HHGM10] section 5.5). Interleaved: the sender is rewritten after every
 // direction (emission + direct + the running mean). Bounce: the sender is fixed for a pass of
@@ -156,18 +229,23 @@ struct AtlasShadePush {
     uint pad0;
     uvec2 gathered;        // vec4 per pixel: weighted sum of the final glossy gather (0: none), to `rest`
     uvec2 highlight;       // vec4 per pixel: point/spot light's glossy lobe toward the eye (0: none), to `direct`
+    uvec2 sumsIndirect;    // split (delay_indirect): the multi-bounce channel's sums, to `rest`; the
+                           // one-bounce `sums` (and `gathered`) then go to `direct`
+    uvec2 gatheredIndirect; // split: the multi-bounce channel's gather sums, to `rest`
+    float indirectScale;   // split: 1 / total weight of the multi-bounce channel (0: not enabled yet)
+    uint split;
 };
-BL_STATIC_ASSERT(sizeof(AtlasShadePush) == 104, "AtlasShadePush layout");
+BL_STATIC_ASSERT(sizeof(AtlasShadePush) == 128, "AtlasShadePush layout");
 
 // Final glossy gather ([HHGM10] section 5.3), after each direction's exchange: per camera pixel
 // whose visible point p is glossy, the neighbour fragment of p along the direction on p's side
 // sends its radiance, weighted by p's glossy lobe toward the eye, cos, 1 / p_r and w_j.
 struct AtlasGatherPush {
     BundlePoolView pool;
-    uvec2 sender;     // vec4 per texel side (this direction's sender: what the neighbour sends)
+    uvec2 gatheredIndirect; // split: vec4 per pixel, the multi-bounce channel's weighted sum
     uvec2 triangles;  // AtlasTriangle[]
-    uvec2 gathered;   // vec4 per pixel: the weighted sum over directions
-    uvec2 direction;  // AtlasDirection
+    uvec2 gathered;   // vec4 per pixel: the weighted sum over directions (the one-bounce channel where split)
+    uvec2 direction;  // AtlasDirection (what the neighbour sends: blAtlasSender)
     uvec2 pad0;
     uint width;       // camera image
     uint height;

@@ -18,6 +18,11 @@
 // pixels hitting T it is a one-direction estimate of T's glossy outgoing radiance toward o; the
 // update adds it to T's sender for direction i + 1 only, and since that sender already holds what
 // came in glossily at i, light travels through any number of glossy surfaces.
+//
+// Split channels (delay_indirect, [HHGM10] section 6.4): what the sender's emitter (and the
+// environment) sends is received into the one-bounce channel (words 0..2), what it reflects into
+// the multi-bounce channel (receivedIndirect), the latter only once indirect light is enabled.
+// Every side that receives joins the direction's touched list (the update visits only those).
 #include "modes/atlas/AtlasBuffers.glsl"
 #include "bundle/Traversal.glsl"
 #include "shared/Brdf.h"
@@ -31,12 +36,13 @@ uint texelOf(BundleHitPayload hits, uint node) {
     return blAtlasHitTexel(hits.hits[node], push.triangles, push.width, push.height);
 }
 
-// received[texel side] += value, three float adds by compare-and-swap (the device layer enables no
-// float atomics; lavapipe's threads rarely collide on one texel).
-void atomicAddRadiance(uint slot, uint offset, vec3 value) {
-    AtlasReceived received = AtlasReceived(push.received);
+// words[stride * slot + offset + c] += value[c], three float adds by compare-and-swap (the device
+// layer enables no float atomics; lavapipe's threads rarely collide on one texel).
+void atomicAddRadiance(uvec2 address, uint stride, uint slot, uint offset, vec3 value) {
+    AtlasReceived received = AtlasReceived(address);
+    blAtlasTouch(push.received, AtlasDirectionBlock(push.direction).direction.touched, slot);
     for (uint c = 0u; c < 3u; ++c) {
-        uint word = kAtlasReceivedWords * slot + offset + c;
+        uint word = stride * slot + offset + c;
         uint expected = received.words[word];
         for (;;) {
             uint desired = floatBitsToUint(uintBitsToFloat(expected) + value[c]);
@@ -49,17 +55,31 @@ void atomicAddRadiance(uint slot, uint offset, vec3 value) {
     }
 }
 
-// Texel side `side` of node `node` receives radiance `incoming` arriving from direction `toward`
-// (unit, away from the surface: -omega for the side facing backward, +omega forward).
-void receive(BundleHitPayload hits, uint node, uint texel, uint side, vec3 incoming, vec3 toward,
+// Texel side `side` of node `node` receives radiance arriving from direction `toward` (unit, away
+// from the surface: -omega for the side facing backward, +omega forward): `incoming` from an
+// emitter or the environment and `reflected` from a reflecting surface (one sum where not split).
+void receive(BundleHitPayload hits, uint node, uint texel, uint side, vec3 emitted, vec3 reflected, vec3 toward,
              AtlasDirection dir) {
+    vec3 incoming = emitted + reflected;
     AtlasTexel t = AtlasTexels(push.texels).texels[texel];
     if (!(t.inverseArea > 0.0) || !any(greaterThan(incoming, vec3(0.0)))) {
         return;
     }
-    vec3 value = t.albedo * incoming * (dir.weight * t.inverseArea);
-    if (any(greaterThan(value, vec3(0.0)))) {
-        atomicAddRadiance(kAtlasSides * texel + side, 0u, value);
+    uint slot = kAtlasSides * texel + side;
+    if (dir.split == 0u) {
+        vec3 value = t.albedo * incoming * (dir.weight * t.inverseArea);
+        if (any(greaterThan(value, vec3(0.0)))) {
+            atomicAddRadiance(push.received, kAtlasReceivedWords, slot, 0u, value);
+        }
+    } else {
+        vec3 one = t.albedo * emitted * (dir.weight * t.inverseArea);
+        vec3 multi = t.albedo * reflected * (dir.weight * t.inverseArea);
+        if (any(greaterThan(one, vec3(0.0)))) {
+            atomicAddRadiance(push.received, kAtlasReceivedWords, slot, 0u, one);
+        }
+        if (any(greaterThan(multi, vec3(0.0)))) {
+            atomicAddRadiance(dir.receivedIndirect, 4u, slot, 0u, multi);
+        }
     }
     if (dir.glossy == 0u) {
         return;
@@ -77,7 +97,7 @@ void receive(BundleHitPayload hits, uint node, uint texel, uint side, vec3 incom
     vec3 lobe = blEvalBrdf(m, vec3(0.0), n, toward, leaving); // albedo 0: the glossy lobe alone
     vec3 glossy = kPi * dir.weight * t.inverseArea * lobe * incoming;
     if (any(greaterThan(glossy, vec3(0.0)))) {
-        atomicAddRadiance(kAtlasSides * texel + side, kAtlasReceivedGlossy, glossy);
+        atomicAddRadiance(push.received, kAtlasReceivedWords, slot, kAtlasReceivedGlossy, glossy);
     }
 }
 
@@ -95,7 +115,6 @@ void main() {
     AtlasDirection dir = AtlasDirectionBlock(push.direction).direction;
     BundleNodes nodes = BundleNodes(push.pool.nodes);
     BundleHitPayload hits = BundleHitPayload(push.pool.payload);
-    AtlasRadiance sender = AtlasRadiance(push.sender);
     uint head = blBundlePoolHeads(push.pool, 0u).heads[pixel] & kBundleIndexMask;
     if (head == kBundleNil) {
         return;
@@ -105,21 +124,24 @@ void main() {
     uint yNext = nodes.nodes[y].next;
     uint yTexel = texelOf(hits, y);
     vec3 omega = frame.direction;
-    receive(hits, y, yTexel, blAtlasSideFacingBackward(yNext), dir.environmentBackward, -omega, dir);
+    receive(hits, y, yTexel, blAtlasSideFacingBackward(yNext), dir.environmentBackward, vec3(0.0), -omega, dir);
+    // Before indirect light is enabled (split) surfaces send their emission only.
+    float reflects = dir.split == 0u || dir.indirect != 0u ? 1.0 : 0.0;
     for (uint x = yNext & kBundleIndexMask; x != kBundleNil;) {
         uint xNext = nodes.nodes[x].next;
         uint xTexel = texelOf(hits, x);
         uint ySide = blAtlasSideFacingForward(yNext);
         uint xSide = blAtlasSideFacingBackward(xNext);
-        vec3 fromY = sender.radiance[kAtlasSides * yTexel + ySide].rgb;
-        vec3 fromX = sender.radiance[kAtlasSides * xTexel + xSide].rgb;
-        receive(hits, x, xTexel, xSide, fromY, -omega, dir);
-        receive(hits, y, yTexel, ySide, fromX, omega, dir);
+        vec3 yEmitted, yReflected, xEmitted, xReflected;
+        blAtlasSenderParts(dir, kAtlasSides * yTexel + ySide, yEmitted, yReflected);
+        blAtlasSenderParts(dir, kAtlasSides * xTexel + xSide, xEmitted, xReflected);
+        receive(hits, x, xTexel, xSide, yEmitted, reflects * yReflected, -omega, dir);
+        receive(hits, y, yTexel, ySide, xEmitted, reflects * xReflected, omega, dir);
         y = x;
         yNext = xNext;
         yTexel = xTexel;
         x = xNext & kBundleIndexMask;
     }
     // Last hit: its +omega side looks out of the scene.
-    receive(hits, y, yTexel, blAtlasSideFacingForward(yNext), dir.environmentForward, omega, dir);
+    receive(hits, y, yTexel, blAtlasSideFacingForward(yNext), dir.environmentForward, vec3(0.0), omega, dir);
 }

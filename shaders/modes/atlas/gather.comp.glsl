@@ -10,6 +10,9 @@
 //   L_glossy(p, eye) ~ L_sender(neighbour) f_glossy(p, d, eye) (n . d) / p_r(d),
 // summed with the atlas's weights w_j (the shade pass divides by their total). The Lambert part
 // of p is the atlas's; the point lights' glossy highlight is the highlight pass's.
+// Split channels (delay_indirect): the neighbour's emission and the environment go to the one-
+// bounce sums (weight w_j), its reflected light to the multi-bounce sums (their own weight, once
+// indirect light is enabled), as in the atlas.
 #include "modes/atlas/AtlasBuffers.glsl"
 #define BL_ACCUM_LAYERS kAtlasAccumLayers
 #include "gpu/CameraSet.glsl"
@@ -20,11 +23,15 @@
 layout(local_size_x = kAtlasViewGroupSize, local_size_y = kAtlasViewGroupSize) in;
 layout(push_constant) uniform PushBlock { AtlasGatherPush push; };
 
-vec3 gathered(ivec2 pixel) {
+// The lobe's reflection toward the eye of what the neighbour emits (and the environment) in
+// `emitted`, of what it reflects in `reflected`.
+void gathered(ivec2 pixel, out vec3 emitted, out vec3 reflected) {
+    emitted = vec3(0.0);
+    reflected = vec3(0.0);
     GpuMaterial m;
     vec3 p, n, eye;
     if (!blAtlasGlossyPixel(pixel, m, p, n, eye) || blBundlePoolOverflowed(BundleCounterBlock(push.pool.counters))) {
-        return vec3(0.0);
+        return;
     }
     BundleFrame frame = blBundlePoolFrame(push.pool, 0u);
     AtlasDirection dir = AtlasDirectionBlock(push.direction).direction;
@@ -32,9 +39,10 @@ vec3 gathered(ivec2 pixel) {
     vec3 d = sense * frame.direction;
     vec3 lobe = blEvalBrdf(m, vec3(0.0), n, d, eye) * dot(n, d); // albedo 0: the glossy lobe alone
     if (!any(greaterThan(lobe, vec3(0.0)))) {
-        return vec3(0.0);
+        return;
     }
     vec3 incoming = sense > 0.0 ? dir.environmentForward : dir.environmentBackward;
+    vec3 incomingReflected = vec3(0.0);
     ivec2 bundlePixel;
     float depth;
     if (blBundlePixel(frame, p, bundlePixel, depth)) {
@@ -47,10 +55,11 @@ vec3 gathered(ivec2 pixel) {
             uint side = sense > 0.0 ? blAtlasSideFacingBackward(next) : blAtlasSideFacingForward(next);
             BundleHit hit = BundleHitPayload(push.pool.payload).hits[neighbour];
             uint texel = blAtlasHitTexel(hit, push.triangles, push.atlasWidth, push.atlasHeight);
-            incoming = AtlasRadiance(push.sender).radiance[kAtlasSides * texel + side].rgb;
+            blAtlasSenderParts(dir, kAtlasSides * texel + side, incoming, incomingReflected);
         }
     }
-    return incoming * lobe * dir.inverseDensity;
+    emitted = incoming * lobe * dir.inverseDensity;
+    reflected = incomingReflected * lobe * dir.inverseDensity;
 }
 
 void main() {
@@ -59,7 +68,19 @@ void main() {
         return;
     }
     uint index = uint(pixel.y) * push.width + uint(pixel.x);
+    vec3 emitted, reflected;
+    gathered(pixel, emitted, reflected);
+    AtlasDirection dir = AtlasDirectionBlock(push.direction).direction;
     AtlasRadiance sums = AtlasRadiance(push.gathered);
     vec3 sum = push.clear != 0u ? vec3(0.0) : sums.radiance[index].rgb;
-    sums.radiance[index] = vec4(sum + push.weight * gathered(pixel), 0.0);
+    if (dir.split == 0u) {
+        sums.radiance[index] = vec4(sum + push.weight * (emitted + reflected), 0.0); // one of them is 0
+        return;
+    }
+    sums.radiance[index] = vec4(sum + push.weight * emitted, 0.0);
+    if (dir.indirect != 0u) {
+        AtlasRadiance indirect = AtlasRadiance(push.gatheredIndirect);
+        vec3 sumIndirect = dir.clearIndirect != 0u ? vec3(0.0) : indirect.radiance[index].rgb;
+        indirect.radiance[index] = vec4(sumIndirect + dir.weightIndirect * reflected, 0.0);
+    }
 }

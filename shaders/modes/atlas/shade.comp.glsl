@@ -19,11 +19,19 @@ uint indexOf(ivec2 texel, uint page) { return (page * push.atlasHeight + uint(te
 
 // Adds w times a texel side's reflected radiance: the exchange's weighted mean and the direct
 // pass's point and spot light.
+// Split channels (delay_indirect): the one-bounce estimate is light of two segments, so it joins
+// `direct` (as the reference's layers count), the multi-bounce estimate `rest`.
 void reflectedAt(uint index, uint side, float w, inout vec3 exchanged, inout vec3 direct) {
     uint slot = kAtlasSides * index + side;
     AtlasRadiance sums = AtlasRadiance(push.sums);
-    exchanged += w * ((sums.radiance[2u * slot].rgb + sums.radiance[2u * slot + 1u].rgb) * push.reflectedScale +
-                      AtlasRadiance(push.settled).radiance[slot].rgb);
+    vec3 mean = (sums.radiance[2u * slot].rgb + sums.radiance[2u * slot + 1u].rgb) * push.reflectedScale;
+    if (push.split != 0u) {
+        AtlasRadiance indirect = AtlasRadiance(push.sumsIndirect);
+        exchanged += w * (indirect.radiance[2u * slot].rgb + indirect.radiance[2u * slot + 1u].rgb) * push.indirectScale;
+        direct += w * (mean + AtlasRadiance(push.direct).radiance[slot].rgb);
+        return;
+    }
+    exchanged += w * (mean + AtlasRadiance(push.settled).radiance[slot].rgb);
     direct += w * push.directScale * AtlasRadiance(push.direct).radiance[slot].rgb;
 }
 
@@ -93,7 +101,13 @@ void main() {
     }
     // The gather's per-pixel mean already averages its own jittered samples (escaped ones gave 0).
     if (push.gathered != uvec2(0u)) {
-        layers[kPathRest] += push.reflectedScale * AtlasRadiance(push.gathered).radiance[index].rgb;
+        vec3 gathered = push.reflectedScale * AtlasRadiance(push.gathered).radiance[index].rgb;
+        if (push.split != 0u) {
+            layers[kPathDirect] += gathered;
+            layers[kPathRest] += push.indirectScale * AtlasRadiance(push.gatheredIndirect).radiance[index].rgb;
+        } else {
+            layers[kPathRest] += gathered;
+        }
     }
     blAccumulate(pixel, layers);
 }
