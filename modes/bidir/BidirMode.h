@@ -37,9 +37,10 @@
 //   suppression            none     glossy artifact suppression ([TO12] section 5,
 //                                   shaders/modes/bidir/Suppression.h): none | clamp | roughness, at
 //                                   both vertices of one-bounce paths (densities of Eq. 13-17 from
-//                                   N = K pairs per frame, so the bias stays as frames accumulate)
-//                                   and at x of two-bounce paths (Eq. 14); the lights' direct term
-//                                   is never suppressed.
+//                                   N = the pairs in the pixel's estimate of one frame: K, or K / n^2
+//                                   with interleave = n and the blur off; per frame, so the bias
+//                                   stays as frames accumulate) and at x of two-bounce paths (Eq.
+//                                   14); the lights' direct term is never suppressed.
 //   suppression_neighbours 16       m' ([TO12]: 16)
 //   vpl_source             rsm      rsm: VPLs sampled on the GPU from a reflective shadow cube per
 //                                   light rendered every frame with a sub-texel jitter, p_e by the
@@ -73,7 +74,12 @@
 //   interleave_filter      on       on | off: the geometry-aware blur after the gather (off: each
 //                                   pixel keeps its sub-image's K / n^2 pairs, unbiased)
 //   temporal               off      on | off: 2 x 2 sub-pixel caches, round-robin with periodic
-//                                   sample sets, reverse reprojection ([TO12s] A.2)
+//                                   sample sets, reverse reprojection ([TO12s] A.2). The image is
+//                                   the pixel sampled at the 2 x 2 sub-pixel centres (not the box
+//                                   filter; ~1% of the image mean apart where the Cornell box's
+//                                   edges cut pixels at 32^2); no bias of the reconstruction against
+//                                   the reference: experiments/bidir-interleaving.md. Adds the EXR
+//                                   layer cache_hits (the last frame's share of accepted caches).
 //   reprojection           auto     auto | always: auto warps into the caches' cameras only when the
 //                                   camera is animated (a static camera's warp is the identity)
 //   temporal_depth_variance 1e-4    2 sigma^2 of the caches' log-depth Gaussian ([TO12s]: 1e-4)

@@ -7,8 +7,10 @@
 //   Temporal: the animated Cornell box (block moves, camera dollies) and the same with the camera
 //   held at its first pose, one iterate() per frame as a real-time renderer would, per frame NRMSE
 //   against a reference at that frame's time, and flicker (mean |L_f - L_{f-1}| over static pixels).
+//   TemporalImageMean(Animated): the image mean of temporal = on against off and the reference.
 #include "modes/Registry.h"
 #include "modes/reference/ReferenceTestSupport.h"
+#include "sampling/PixelSamples.h"
 #include "scene/SceneLoader.h"
 #include "support/TestFiles.h"
 #include "support/VulkanTest.h"
@@ -62,11 +64,23 @@ int envInt(const char* name, int fallback) {
     return v ? std::atoi(v) : fallback;
 }
 
-std::vector<double> referenceAt(const Scene& s, double time, std::uint32_t spp) {
+std::vector<double> referenceAt(const Scene& s, double time, std::uint32_t spp, const std::string& layer = "indirect1") {
     std::unique_ptr<Mode> mode = createMode("reference", {"max_segments=3"});
     mode->setScene(s, nullptr);
     for (std::uint32_t i = 0; i < spp; ++i) mode->iterate({i, 1000, time});
-    return pixels(bl::test::layerOf(mode->resolve(), "indirect1"));
+    return pixels(bl::test::layerOf(mode->resolve(), layer));
+}
+
+// Adds BL_EXTRA's comma-separated bidir settings (they come last, so they override).
+void appendExtraSettings(std::vector<std::string>& settings) {
+    const char* e = std::getenv("BL_EXTRA");
+    const std::string x = e ? e : "";
+    for (std::size_t p = 0; p < x.size();) {
+        std::size_t q = x.find(',', p);
+        if (q == std::string::npos) q = x.size();
+        settings.push_back(x.substr(p, q - p));
+        p = q + 1;
+    }
 }
 
 class InterleavingExperiment : public bl::test::VulkanTest {};
@@ -224,4 +238,144 @@ TEST_F(InterleavingExperiment, DISABLED_Temporal) {
         std::printf("%-14s reference flicker (its own noise at %u spp + the true change) %.3f%%\n", sceneName.c_str(), spp,
                     mean(refFlicker));
     }
+}
+
+// Image mean of temporal = on against off and the reference on a static view (the report's
+// "temporal image mean" section): per seed, the same frames (BL_FRAMES, 4: the same four sample
+// sets for both) with each setting; paired ratios, the mean over seeds with its standard error,
+// per-pixel means over seeds (temporal-bias.csv) and the on - off difference summed over 4x4 blocks
+// as a share of the reference's image total. BL_REF4=1 also renders the reference 6x finer and
+// reads it at the 2x2 sub-pixel centres and at the progressive jitter's first points (the pixel
+// positions each setting samples). BL_EXTRA: comma-separated bidir settings added last.
+TEST_F(InterleavingExperiment, DISABLED_TemporalImageMean) {
+    const int side = envInt("BL_SIDE", 32), frames = envInt("BL_FRAMES", 4), seeds = envInt("BL_SEEDS", 20);
+    Scene s = loadScene(bl::test::sourcePath("data/cornell-box/cornell-point.toml"));
+    const std::string layerName = std::getenv("BL_LAYER") ? std::getenv("BL_LAYER") : "indirect1";
+    s.camera.resolution = {side, side};
+    std::vector<std::string> base = {"strategy=vpl",          "bounces=1",         "pairs_per_frame=8",
+                                     "interleave=2",          "vpl_source=traced", "fit=scene",
+                                     "bundle_resolution=128", "shadow_resolution=256", "vpl_shadow_resolution=128"};
+    appendExtraSettings(base);
+    std::vector<double> on(side * side, 0.0), off(side * side, 0.0);
+    std::vector<double> seedOn, seedOff;
+    for (int seed = 1; seed <= seeds; ++seed) {
+        for (const bool t : {false, true}) {
+            auto settings = base;
+            settings.push_back(std::string("temporal=") + (t ? "on" : "off"));
+            std::unique_ptr<Mode> mode = createMode("bidir", settings);
+            mode->setScene(s, &ctx());
+            for (int f = 0; f < frames; ++f) mode->iterate({std::uint32_t(f), std::uint64_t(seed), 0.0});
+            const auto px = pixels(bl::test::layerOf(mode->resolve(), layerName));
+            for (int i = 0; i < side * side; ++i) (t ? on : off)[i] += px[i] / seeds;
+            (t ? seedOn : seedOff).push_back(mean(px));
+            int top = 0;
+            for (int i = 0; i < side * side; ++i) if (px[i] > px[top]) top = i;
+            std::printf("seed %d %s mean %.6f max %.4f at (%d, %d)\n", seed, t ? "on " : "off", mean(px), px[top],
+                        top % side, top / side);
+        }
+    }
+    const std::vector<double> ref = referenceAt(s, 0.0, envInt("BL_REFERENCE_SPP", 1024), layerName);
+    std::printf("image mean: off %.6f on %.6f ref %.6f (on/off %.4f, on/ref %.4f)\n", mean(off), mean(on), mean(ref),
+                mean(on) / mean(off), mean(on) / mean(ref));
+    {
+        std::vector<double> ratio, dOn, dOff;
+        for (int k = 0; k < seeds; ++k) {
+            ratio.push_back(seedOn[k] / seedOff[k]);
+            dOn.push_back(seedOn[k] / mean(ref));
+            dOff.push_back(seedOff[k] / mean(ref));
+        }
+        const double r = std::sqrt(double(seeds));
+        std::printf("per seed: on/off %.4f +- %.4f, on/ref %.4f +- %.4f, off/ref %.4f +- %.4f (mean +- standard error)\n",
+                    mean(ratio), spread(ratio) / r, mean(dOn), spread(dOn) / r, mean(dOff), spread(dOff) / r);
+    }
+    {
+        // Without the two outer pixel rows and columns, which the box's front edges cut.
+        double sOn = 0.0, sOff = 0.0, sRef = 0.0;
+        for (int y = 2; y < side - 2; ++y)
+            for (int x = 2; x < side - 2; ++x) sOn += on[y * side + x], sOff += off[y * side + x], sRef += ref[y * side + x];
+        std::printf("interior: on/ref %.4f, off/ref %.4f, on/off %.4f\n", sOn / sRef, sOff / sRef, sOn / sOff);
+    }
+    if (envInt("BL_REF4", 0)) {
+        Scene fine = s;
+        fine.camera.resolution = {6 * side, 6 * side};
+        const std::vector<double> r6 = referenceAt(fine, 0.0, envInt("BL_REFERENCE_SPP", 1024) / 4, layerName);
+        std::vector<double> ref4(side * side, 0.0);
+        for (int y = 0; y < side; ++y)
+            for (int x = 0; x < side; ++x)
+                for (int j : {1, 4})
+                    for (int i : {1, 4}) ref4[y * side + x] += 0.25 * r6[(6 * y + j) * 6 * side + 6 * x + i];
+        std::printf("reference at the 2x2 sub-pixel centres: %.6f (box %.6f: %.4f); on / it %.4f, off / it %.4f\n",
+                    mean(ref4), mean(ref), mean(ref4) / mean(ref), mean(on) / mean(ref4), mean(off) / mean(ref4));
+        // The progressive jitter's first four points (PixelSamples.h), nearest fine pixel centre.
+        std::vector<double> refH(side * side, 0.0);
+        const int fineSide = 6 * side;
+        for (int y = 0; y < side; ++y)
+            for (int x = 0; x < side; ++x)
+                for (std::uint32_t k = 0; k < std::uint32_t(frames); ++k) {
+                    const glm::vec2 p = pixelSamplePosition(k, true);
+                    const int fx = std::min(fineSide - 1, 6 * x + int(6.0f * p.x));
+                    const int fy = std::min(fineSide - 1, 6 * y + int(6.0f * p.y));
+                    refH[y * side + x] += r6[fy * fineSide + fx] / frames;
+                }
+        std::printf("reference at the first %d progressive jitter points: %.6f (box: %.4f); off / it %.4f\n", frames,
+                    mean(refH), mean(refH) / mean(ref), mean(off) / mean(refH));
+    }
+    const double total = mean(ref) * side * side;
+    for (int by = 0; by < side / 4; ++by) {
+        for (int bx = 0; bx < side / 4; ++bx) {
+            double d = 0.0, o = 0.0;
+            for (int y = by * 4; y < by * 4 + 4; ++y)
+                for (int x = bx * 4; x < bx * 4 + 4; ++x) d += on[y * side + x] - off[y * side + x], o += ref[y * side + x];
+            std::printf(" %+6.2f", 100.0 * d / total);
+        }
+        std::printf("\n");
+    }
+    std::ofstream f(outDir() + "/temporal-bias.csv");
+    f << "x,y,off,on,ref\n";
+    for (int i = 0; i < side * side; ++i) f << i % side << "," << i / side << "," << off[i] << "," << on[i] << "," << ref[i] << "\n";
+}
+
+// The same on the animated Cornell box, one iterate() per frame as `render --frames`: per frame,
+// the image mean of temporal on and off (the fixed set) against that frame's reference, over seeds
+// (BL_STATIC_CAMERA=1: the camera held at its first pose).
+TEST_F(InterleavingExperiment, DISABLED_TemporalImageMeanAnimated) {
+    const int side = envInt("BL_SIDE", 32), frames = envInt("BL_FRAMES", 8), seeds = envInt("BL_SEEDS", 20);
+    const double fps = envInt("BL_FPS", 6);
+    Scene s = loadScene(bl::test::sourcePath("data/cornell-box/cornell-animated.toml"));
+    s.camera.resolution = {side, side};
+    if (envInt("BL_STATIC_CAMERA", 0)) s.camera.keys.clear();
+    std::vector<std::string> base = {"pairs_per_frame=8", "interleave=2", "vpl_source=traced", "fit=scene",
+                                     "bundle_resolution=128", "shadow_resolution=256", "vpl_shadow_resolution=128"};
+    appendExtraSettings(base);
+    std::vector<double> refMeans;
+    for (int f = 0; f < frames; ++f) refMeans.push_back(mean(referenceAt(s, f / fps, envInt("BL_REFERENCE_SPP", 256))));
+    std::vector<std::vector<double>> on(frames), off(frames);
+    for (int seed = 1; seed <= seeds; ++seed) {
+        for (const bool t : {false, true}) {
+            auto settings = base;
+            settings.push_back(std::string("temporal=") + (t ? "on" : "off"));
+            std::unique_ptr<Mode> mode = createMode("bidir", settings);
+            for (int f = 0; f < frames; ++f) {
+                mode->setScene(s, &ctx());
+                IterationInfo info;
+                info.seed = std::uint64_t(seed);
+                info.time = f / fps;
+                info.previousTime = f > 0 ? (f - 1) / fps : info.time;
+                info.frame = std::uint32_t(f);
+                mode->iterate(info);
+                (t ? on : off)[f].push_back(mean(pixels(bl::test::layerOf(mode->resolve(), "indirect1"))) / refMeans[f]);
+            }
+        }
+    }
+    const double r = std::sqrt(double(seeds));
+    std::vector<double> allOn, allOff;
+    for (int f = 0; f < frames; ++f) {
+        std::printf("frame %d: on/ref %.4f +- %.4f, off/ref %.4f +- %.4f\n", f, mean(on[f]), spread(on[f]) / r,
+                    mean(off[f]), spread(off[f]) / r);
+        if (f >= 4) {
+            allOn.insert(allOn.end(), on[f].begin(), on[f].end());
+            allOff.insert(allOff.end(), off[f].begin(), off[f].end());
+        }
+    }
+    std::printf("frames 4-%d: on/ref %.4f, off/ref %.4f\n", frames - 1, mean(allOn), mean(allOff));
 }
