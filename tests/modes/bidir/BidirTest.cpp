@@ -294,7 +294,7 @@ TEST_F(Bidir, BundleStrategyConvergesToReferenceIndirect1) {
 // frame): the VPL strategy's image mean converges to the reference's indirect1 (a wrong density,
 // e.g. without the texel's Jacobian J / A, moves it by tens of percent). Region by region the VPL
 // strategy alone carries a 1/r^2 tail four seeds cannot bound (8 seeds x 512 frames: every region
-// within -5.5%..+2.6% of the reference, one region's seeds' spread 5.8%); RsmVplsConvergeRegionByRegion
+// within -5.5%..+2.5% of the reference, one region's seeds' spread 5.8%); RsmVplsConvergeRegionByRegion
 // tests the RSM's VPLs region by region under MIS, see papers/tokuyoshi-ogaki-2012.md.
 TEST_F(Bidir, RsmVplStrategyImageMeanConvergesToReferenceIndirect1) {
     const Runs& r = runs({"strategy=vpl", "bounces=1", "vpl_source=rsm"}, kComparisonFrames);
