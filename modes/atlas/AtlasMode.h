@@ -49,9 +49,11 @@
 // directions send emitters' light only; from direction N + 1 on reflected light is sent too. The
 // estimate is then kept as two channels, summed apart: one-bounce (what emitters and the
 // environment send, received once; the same fixed sender every direction) and multi-bounce (what
-// reflecting surfaces send: direct + both estimates + glossy transfer). Each channel is a j^k-
-// weighted mean over its own directions (the multi-bounce channel's j counts from its first
-// direction), so the channel that starts late forgets its first directions' missing bounces and
+// reflecting surfaces send: direct + both estimates + glossy transfer). The one-bounce channel's
+// sender is fixed, so it is the plain mean over all directions (unbiased at every n; j^k would
+// only cost samples: Cornell box relMSE 2x lower at equal directions than the single j^k-weighted
+// estimate, seed 1, 128-1024 directions); the multi-bounce channel is the j^k-weighted mean over
+// its own directions (j from its first), so it forgets its first directions' missing bounces and
 // the sum stays consistent: L = E + P + D + I with D = T E and I = T (P + D + I) (T the transport
 // of one bounce, P point/spot light) is L = E + P + T L. With split channels the one-bounce
 // estimate is light of two segments and goes to layer `direct`, the multi-bounce one to `rest`.
@@ -97,8 +99,9 @@
 //   transfer           interleaved        interleaved (Gauss-Seidel) or bounce (one pass per bounce)
 //   bounce_directions  256     directions transfer = bounce: directions per pass
 //   max_segments       0       segments   transfer = bounce: longest path kept (0: no limit)
-//   delay_indirect     0       directions N: the first N directions direct light only, one-bounce and
-//                                         multi-bounce estimates apart (0: one estimate; interleaved only)
+//   delay_indirect     0       directions N: the first N directions direct light only, one-bounce (plain
+//                                         mean) and multi-bounce (j^k) estimates apart (0: one estimate;
+//                                         interleaved only)
 //   importance_offset  1.0                directions = importance: offset of the environment's density
 //   shadow_resolution  512     texels     side of each point/spot light's shadow cube face
 //   light_samples      2       per side   n x n points per texel gather point/spot light

@@ -46,8 +46,8 @@ std::vector<ParamSpec> AtlasMode::parameters() {
          0, 0, {"transfer", "gather", "off"}},
         {kDelayIndirect, std::int64_t{0}, "directions",
          "N: the first N directions carry direct light only (emitters send, reflected light does not), indirect light "
-         "from direction N + 1 on ([HHGM10] 6.4); the one-bounce and multi-bounce estimates are summed apart, each "
-         "with its own j^k weights (0: one estimate, as before; interleaved transfer only)",
+         "from direction N + 1 on ([HHGM10] 6.4); the one-bounce (plain mean: its sender is fixed) and multi-bounce "
+         "(j^k from its first direction) estimates are summed apart (0: one estimate; interleaved transfer only)",
          0, 1 << 24, {}},
         {kMemoryCap, std::int64_t{0}, "MiB",
          "node storage limit of the bundle pool (0: half the largest device-local heap); a direction that needs more is "

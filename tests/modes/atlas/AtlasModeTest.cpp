@@ -74,8 +74,9 @@ TEST_F(Atlas, FurnaceTexelsReachTwo) {
 // Delayed indirect light ([HHGM10] section 6.4, delay_indirect = N): the first N directions send
 // the emitters' light only, and the one-bounce and multi-bounce estimates are summed apart (each
 // weighted j^k over its own directions), so the furnace still reaches 2 texel by texel once the
-// multi-bounce channel has run: 1 (emission) + 1/2 (one bounce) + 1/2 (the rest of the series).
-// 64 of 384 directions direct only (48^2 atlas, 192^2 bundles): mean 1.997, worst texel 0.020 off.
+// multi-bounce channel has run: 1 (emission) + 1/2 (one bounce, a plain mean) + 1/2 (the rest of
+// the series, j^k from its first direction).
+// 64 of 384 directions direct only (48^2 atlas, 192^2 bundles): mean 1.998, worst texel 0.015 off.
 // Mutations: the multi-bounce channel normalized by the one-bounce weights of its directions
 // (j counted from direction 1) gives 1.689; emitters sent into the multi-bounce channel too, 2.993.
 TEST_F(Atlas, FurnaceDelayedIndirectReachesTwo) {
@@ -202,8 +203,9 @@ TEST_F(Atlas, CornellPointLightMatchesReference) {
 // Delayed indirect light on the Cornell box (area light): with delay_indirect the one-bounce
 // estimate is light of two segments and goes to layer `direct`, the multi-bounce estimate to
 // `rest`, so each is checked against its own reference layer (direct; indirect1 + indirect2 +
-// rest). 64 of 384 directions direct only, 32^2 pixels: image 0.992-0.999 per channel, direct
-// 0.993-1.017, indirect 0.985-0.993, relMSE 0.026. Mutations: the multi-bounce normalization of
+// rest). 64 of 384 directions direct only, 32^2 pixels: image 0.998-1.002 per channel, direct
+// 1.003-1.012, indirect 1.007-1.010, relMSE 0.012 (0.026 with j^k weights in the one-bounce
+// channel too). Mutations: the multi-bounce normalization of
 // the furnace test (indirect 0.37-0.43), emitters into the multi-bounce channel too (indirect
 // 2.9-3.5), the one-bounce estimate shown in `rest` (direct 0).
 TEST_F(Atlas, CornellDelayedIndirectMatchesReferenceLayers) {
