@@ -468,7 +468,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
     params.fixedSender = addressOf(*mContext, g.sender);
     params.touched = addressOf(*mContext, g.touched);
     params.scale = mTotalWeight > 0.0 ? float(1.0 / mTotalWeight) : 0.0f;
-    params.previous = mIterations - 1u; // the first direction's ~0u matches no stored transfer
+    params.previous = mIterations - 1u; // the first direction: ~0u is the init pass's tag, whose stored glossy transfer is zero
     params.transfer = bounce() ? shader::kAtlasTransferBounce : shader::kAtlasTransferInterleaved;
     if (g.split) {
         params.split = 1u;

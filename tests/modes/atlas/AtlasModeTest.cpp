@@ -1,4 +1,5 @@
 // Mode atlas against closed forms and the CPU reference path tracer (never against itself).
+#include "base/Error.h"
 #include "image/Metrics.h"
 #include "modes/Registry.h"
 #include "modes/atlas/AtlasMode.h"
@@ -91,6 +92,24 @@ TEST_F(Atlas, FurnaceDelayedIndirectReachesTwo) {
 
 // The furnace seen by the camera: the view raster, the G-buffer's emission and the shade pass's
 // texel lookup (bilinear inside charts) give 2 in every pixel.
+
+// Settings that would mix path lengths are refused before any work, with the value named:
+// delay_indirect with bounce-by-bounce transfer, max_segments with interleaved transfer.
+TEST_F(Atlas, RefusesSettingsThatMixPathLengths) {
+    const Scene s = loadSmall("data/analytic/furnace.toml", 16);
+    const auto refusal = [&](const std::vector<std::string>& settings) -> std::string {
+        std::unique_ptr<Mode> mode = createMode("atlas", settings);
+        try {
+            mode->setScene(s, &ctx());
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_NE(refusal({"transfer=bounce", "delay_indirect=4"}).find("delay_indirect = 4"), std::string::npos);
+    EXPECT_NE(refusal({"transfer=interleaved", "max_segments=2"}).find("max_segments"), std::string::npos);
+    EXPECT_EQ(refusal({"transfer=bounce", "max_segments=2", "atlas_resolution=48", "bundle_resolution=64"}), "");
+}
 TEST_F(Atlas, FurnaceImageIsTwo) {
     Scene s = loadSmall("data/analytic/furnace.toml", 32);
     std::unique_ptr<Mode> mode = run(s, 256, {"atlas_resolution=64", "bundle_resolution=256", "view_samples=4"});

@@ -419,6 +419,48 @@ TEST_F(Bidir, PlanSkipsSuppressionWithoutGlossyMaterialImageUnchanged) {
     EXPECT_FALSE(same(suppressed.first, glossyNone.first));
 }
 
+// vpl_shadow_taps (specialization constant) changes only the filter of the two VPL-cube lookups:
+// `direct` (the lights' cubes, 4x4 PCF) is the same to the bit, indirect light changes (the taps
+// are applied) by no more than a filter's worth, and no sample is non-finite at 1, 2 or 3 taps.
+TEST_F(Bidir, VplShadowTapsChangeOnlyTheVplShadowFilter) {
+    const Scene s = cornellPoint();
+    auto render = [&](int taps) {
+        std::vector<std::string> settings = kCommon;
+        settings.insert(settings.end(), {"strategy=mis", "bounces=2", "vpl_shadow_taps=" + std::to_string(taps)});
+        std::unique_ptr<Mode> mode = createMode("bidir", settings);
+        mode->setScene(s, &ctx());
+        for (std::uint32_t f = 0; f < 8; ++f) mode->iterate({f, 3, 0.0});
+        ImageSet out = mode->resolve();
+        EXPECT_EQ(out.nonFiniteSamples, 0u) << taps << " taps";
+        return out;
+    };
+    const ImageSet four = render(4);
+    const double four1 = channelMeans(bl::test::layerOf(four, "indirect1")).y;
+    const double four2 = channelMeans(bl::test::layerOf(four, "indirect2")).y;
+    ASSERT_GT(four1, 0.0);
+    for (int taps : {1, 2, 3}) {
+        const ImageSet out = render(taps);
+        const Image& direct = bl::test::layerOf(out, "direct");
+        const Image& directFour = bl::test::layerOf(four, "direct");
+        bool sameDirect = true, changed = false;
+        const Image& ind = bl::test::layerOf(out, "indirect1");
+        const Image& indFour = bl::test::layerOf(four, "indirect1");
+        for (int y = 0; y < kResolution; ++y) {
+            for (int x = 0; x < kResolution; ++x) {
+                sameDirect = sameDirect && direct.at(x, y) == directFour.at(x, y);
+                changed = changed || ind.at(x, y) != indFour.at(x, y);
+            }
+        }
+        const double r1 = channelMeans(ind).y / four1;
+        const double r2 = channelMeans(bl::test::layerOf(out, "indirect2")).y / four2;
+        std::printf("vpl_shadow_taps %d / 4: indirect1 %.4f, indirect2 %.4f\n", taps, r1, r2);
+        EXPECT_TRUE(sameDirect) << taps << " taps";
+        EXPECT_TRUE(changed) << taps << " taps: the VPL lookups ignore the setting";
+        EXPECT_NEAR(r1, 1.0, 0.02) << taps << " taps";
+        EXPECT_NEAR(r2, 1.0, 0.04) << taps << " taps";
+    }
+}
+
 // A scene without point or spot lights (the area-lit Cornell box): no VPLs, no bundles, no pool
 // bound; every strategy renders the emitters and nothing else (it read the unbound pool's
 // address 0 and crashed the device before), as the plan says.
