@@ -1,5 +1,6 @@
 // Mode atlas's device state, shared by the files of the mode (AtlasMode.cpp: scene set-up, one
-// direction's build, exchange and update, resolve; AtlasGlossy.cpp: the glossy passes).
+// direction's build, exchange and update; AtlasResolve.cpp: the camera view; AtlasDirect.cpp:
+// point/spot lights into the direct atlas; AtlasGlossy.cpp: the glossy passes).
 #pragma once
 
 #include "atlas/Atlas.h"
@@ -18,6 +19,10 @@ namespace bl {
 
 namespace atlasmode {
 inline glm::uvec2 addressOf(const vk::Context& ctx, const vk::Buffer& b) { return splitAddress(deviceAddress(ctx, b)); }
+// Storage buffers of the mode: read and written by address, filled and read back by transfers.
+inline constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                              VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                                              VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
 } // namespace atlasmode
 
 struct AtlasMode::Gpu {

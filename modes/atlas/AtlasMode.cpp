@@ -36,6 +36,7 @@
 namespace bl {
 
 using atlasmode::addressOf;
+using atlasmode::kStorage;
 
 namespace {
 constexpr double kMiB = 1024.0 * 1024.0;
@@ -60,9 +61,6 @@ constexpr std::uint32_t kShuffleKey = 0x2545f491u;
 // add received (2 x 16) and sums (2 x 32).
 constexpr VkDeviceSize kBytesPerTexel = 32 + 64 + 64 + 32 + 32 + 4 + 8 + 96;
 constexpr VkDeviceSize kSplitBytesPerTexel = 32 + 64;
-constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                        VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
-                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
 
 DirectionSequence sequenceOf(const std::string& name) {
     if (name == "random") return DirectionSequence::Random;
@@ -335,79 +333,6 @@ shader::AtlasDirection AtlasMode::buildBundle(const IterationInfo& info) {
     }
 }
 
-// What both uses of the direct pass share: the texels' sample points and the lights.
-shader::AtlasDirectPush AtlasMode::directPush() const {
-    const Gpu& g = *mGpu;
-    shader::AtlasDirectPush push{};
-    push.samples = addressOf(*mContext, g.samples);
-    push.first = addressOf(*mContext, g.firstSample);
-    push.texels = addressOf(*mContext, g.texels);
-    push.texelCount = g.texelCount;
-    push.lightCount = g.shadows->lightCount();
-    push.shadowResolution = g.shadows->resolution();
-    return push;
-}
-
-void AtlasMode::lightDirect(double time) {
-    Gpu& g = *mGpu;
-    if (!g.shadows) {
-        return;
-    }
-    const auto grid = static_cast<int>(mSettings.getInt(kLightSamples));
-    const atlasmode::TexelSamples samples = atlasmode::buildTexelSamples(*mScene, g.atlas, g.link, grid, time);
-    g.samples = vk::makeBuffer(*mContext, std::span<const shader::AtlasSample>(samples.samples), kStorage);
-    g.firstSample = vk::makeBuffer(*mContext, std::span<const std::uint32_t>(samples.first), kStorage);
-    g.scene->setLightTime(*mContext, time); // keyframed lights where they are at this time
-    shader::AtlasDirectPush push = directPush();
-    push.direct = addressOf(*mContext, g.directRadiance);
-    push.sender = bounce() ? addressOf(*mContext, g.sender) : glm::uvec2(0u); // interleaved: sender records
-    push.directIntoSender = bounce() ? 0u : 1u;
-    if (g.glossyTransfer) {
-        // The glossy texels (their lobes take the lights' light toward each next direction) and
-        // the first cache record of each: one per sample and light.
-        std::vector<glm::uvec2> glossyTexels;
-        std::uint32_t records = 0;
-        for (std::uint32_t t = 0; t < g.texelCount; ++t) {
-            const shader::AtlasTexel& texel = g.tables.texels[t];
-            const std::uint32_t m = texel.material;
-            const bool glossy = m < mScene->materials.size() && toGpuMaterial(mScene->materials[m]).specular != glm::vec3(0.0f);
-            if (!(texel.inverseArea > 0.0f) || !glossy) continue;
-            glossyTexels.emplace_back(t, records);
-            records += (samples.first[t + 1] - samples.first[t]) * g.shadows->lightCount();
-        }
-        g.glossyTexelCount = static_cast<std::uint32_t>(glossyTexels.size());
-        g.glossyTexels = vk::makeBuffer(*mContext, std::span<const glm::uvec2>(glossyTexels), kStorage);
-        g.lightCache = vk::Buffer(*mContext, std::max<VkDeviceSize>(records, 1) * sizeof(shader::AtlasLightRecord),
-                                  kStorage, vk::MemoryUse::Device);
-    }
-    mContext->submitAndWait([&](VkCommandBuffer cmd) {
-        g.timer.begin(cmd);
-        g.shadows->record(cmd, time, &g.timer);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-        recordDirect(cmd, push, "direct", g.texelCount);
-        if (g.glossyTransfer && g.glossyTexelCount > 0) {
-            shader::AtlasDirectPush cache = glossyPush();
-            cache.glossy = shader::kAtlasDirectGlossyCache;
-            recordDirect(cmd, cache, "glossy light cache", g.glossyTexelCount);
-        }
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-    });
-    g.timer.collect();
-}
-
-// One dispatch of direct.comp.glsl over `count` invocations (every texel for the direct atlas, the
-// glossy texels for the lights' share of the glossy transfer atlas), timed as `name`.
-void AtlasMode::recordDirect(VkCommandBuffer cmd, const shader::AtlasDirectPush& push, const char* name,
-                             std::uint32_t count) {
-    Gpu& g = *mGpu;
-    const std::uint32_t scope = g.timer.start(cmd, name);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.direct.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.directLayout.get(), 0, 1, &g.directSet, 0, nullptr);
-    vkCmdPushConstants(cmd, g.directLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(count, shader::kAtlasGroupSize), 1, 1);
-    g.timer.stop(cmd, scope);
-}
-
 void AtlasMode::iterate(const IterationInfo& info) {
     if (!mGpu) {
         throw Error("atlas: iterate() before setScene()");
@@ -557,74 +482,6 @@ void AtlasMode::iterate(const IterationInfo& info) {
         mTotalWeight = 0.0;
     }
     ++mIterations;
-}
-
-ImageSet AtlasMode::resolve() {
-    if (!mGpu) {
-        throw Error("atlas: resolve() before setScene()");
-    }
-    Gpu& g = *mGpu;
-    const auto samples = static_cast<std::uint32_t>(mSettings.getInt(kViewSamples));
-    const std::uint32_t width = g.camera->width(), height = g.camera->height();
-    g.camera->accumulator().clear(*mContext);
-    shader::AtlasShadePush push{};
-    push.sums = addressOf(*mContext, g.sums);
-    push.texels = addressOf(*mContext, g.texels);
-    push.charts = addressOf(*mContext, g.charts);
-    push.width = width;
-    push.height = height;
-    push.atlasWidth = static_cast<std::uint32_t>(g.atlas.maps.width);
-    push.atlasHeight = static_cast<std::uint32_t>(g.atlas.maps.height);
-    push.reflectedScale = mTotalWeight > 0.0 ? float(1.0 / mTotalWeight) : 0.0f;
-    push.settled = addressOf(*mContext, g.settled);
-    push.directScale = directScale();
-    push.bilinear = mSettings.getBool(kBilinear) ? 1u : 0u;
-    push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
-    push.environmentRotation = g.scene->environmentRotation();
-    push.direct = addressOf(*mContext, g.directRadiance);
-    push.gathered = g.glossy ? addressOf(*mContext, g.gathered) : glm::uvec2(0u);
-    push.highlight = g.highlightPipeline ? addressOf(*mContext, g.highlight) : glm::uvec2(0u);
-    if (g.split) {
-        push.split = 1u;
-        push.sumsIndirect = addressOf(*mContext, g.sumsIndirect);
-        push.gatheredIndirect = g.glossy ? addressOf(*mContext, g.gatheredIndirect) : glm::uvec2(0u);
-        push.indirectScale = mIndirectWeight > 0.0 ? float(1.0 / mIndirectWeight) : 0.0f;
-    }
-    for (std::uint32_t k = 0; k < samples; ++k) {
-        const gpu::CameraSample sample = g.camera->sample(k, samples > 1, mTime);
-        push.samplePosition = sample.samplePosition;
-        mContext->submitAndWait([&](VkCommandBuffer cmd) {
-            g.timer.begin(cmd);
-            g.camera->record(cmd, sample, &g.timer);
-            g.view->record(cmd, sample, &g.timer);
-            if (g.highlightPipeline) {
-                recordHighlight(cmd);
-            }
-            const std::uint32_t scope = g.timer.start(cmd, "shade");
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.shade.get());
-            const VkDescriptorSet sets[] = {g.camera->set(), g.viewSet};
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.shadeLayout.get(), 0, 2, sets, 0, nullptr);
-            vkCmdPushConstants(cmd, g.shadeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-            vkCmdDispatch(cmd, vk::groupCount(width, shader::kAtlasViewGroupSize),
-                          vk::groupCount(height, shader::kAtlasViewGroupSize), 1);
-            g.timer.stop(cmd, scope);
-            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                              VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
-        });
-        g.timer.collect();
-    }
-    ImageSet out;
-    out.iterations = mIterations;
-    gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, samples);
-    out.layers = std::move(estimate.layers);
-    out.nonFiniteSamples = estimate.nonFiniteSamples;
-    out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
-    out.counters.emplace_back("atlas_texels", double(g.texelCount));
-    out.counters.emplace_back("atlas_charts", double(g.atlas.stats.charts));
-    out.counters.emplace_back("atlas_degenerate_triangles", double(g.tables.degenerateTriangles));
-    out.counters.emplace_back("bundle_nodes_last", double(g.nodesLast));
-    out.counters.emplace_back("bundle_rebuilds", double(g.rebuilds));
-    return out;
 }
 
 AtlasMode::TexelRadiance AtlasMode::readTexels() const {

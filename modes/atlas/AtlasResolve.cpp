@@ -1,0 +1,85 @@
+// Mode atlas's camera view: per view sample the camera G-buffer and the atlas uv raster, then the
+// shade pass looks each pixel's texel side up (bilinear inside its chart) and adds emission, the
+// environment, the direct atlas and the glossy gather; the accumulator averages the samples.
+#include "modes/atlas/AtlasGpu.h"
+#include "base/Error.h"
+#include "vk/Commands.h"
+
+#include <modes/atlas/AtlasShared.h>
+
+#include <cstdint>
+#include <utility>
+
+namespace bl {
+
+using atlasmode::addressOf;
+
+ImageSet AtlasMode::resolve() {
+    if (!mGpu) {
+        throw Error("atlas: resolve() before setScene()");
+    }
+    Gpu& g = *mGpu;
+    const auto samples = static_cast<std::uint32_t>(mSettings.getInt(kViewSamples));
+    const std::uint32_t width = g.camera->width(), height = g.camera->height();
+    g.camera->accumulator().clear(*mContext);
+    shader::AtlasShadePush push{};
+    push.sums = addressOf(*mContext, g.sums);
+    push.texels = addressOf(*mContext, g.texels);
+    push.charts = addressOf(*mContext, g.charts);
+    push.width = width;
+    push.height = height;
+    push.atlasWidth = static_cast<std::uint32_t>(g.atlas.maps.width);
+    push.atlasHeight = static_cast<std::uint32_t>(g.atlas.maps.height);
+    push.reflectedScale = mTotalWeight > 0.0 ? float(1.0 / mTotalWeight) : 0.0f;
+    push.settled = addressOf(*mContext, g.settled);
+    push.directScale = directScale();
+    push.bilinear = mSettings.getBool(kBilinear) ? 1u : 0u;
+    push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
+    push.environmentRotation = g.scene->environmentRotation();
+    push.direct = addressOf(*mContext, g.directRadiance);
+    push.gathered = g.glossy ? addressOf(*mContext, g.gathered) : glm::uvec2(0u);
+    push.highlight = g.highlightPipeline ? addressOf(*mContext, g.highlight) : glm::uvec2(0u);
+    if (g.split) {
+        push.split = 1u;
+        push.sumsIndirect = addressOf(*mContext, g.sumsIndirect);
+        push.gatheredIndirect = g.glossy ? addressOf(*mContext, g.gatheredIndirect) : glm::uvec2(0u);
+        push.indirectScale = mIndirectWeight > 0.0 ? float(1.0 / mIndirectWeight) : 0.0f;
+    }
+    for (std::uint32_t k = 0; k < samples; ++k) {
+        const gpu::CameraSample sample = g.camera->sample(k, samples > 1, mTime);
+        push.samplePosition = sample.samplePosition;
+        mContext->submitAndWait([&](VkCommandBuffer cmd) {
+            g.timer.begin(cmd);
+            g.camera->record(cmd, sample, &g.timer);
+            g.view->record(cmd, sample, &g.timer);
+            if (g.highlightPipeline) {
+                recordHighlight(cmd);
+            }
+            const std::uint32_t scope = g.timer.start(cmd, "shade");
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.shade.get());
+            const VkDescriptorSet sets[] = {g.camera->set(), g.viewSet};
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.shadeLayout.get(), 0, 2, sets, 0, nullptr);
+            vkCmdPushConstants(cmd, g.shadeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+            vkCmdDispatch(cmd, vk::groupCount(width, shader::kAtlasViewGroupSize),
+                          vk::groupCount(height, shader::kAtlasViewGroupSize), 1);
+            g.timer.stop(cmd, scope);
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                              VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+        });
+        g.timer.collect();
+    }
+    ImageSet out;
+    out.iterations = mIterations;
+    gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, samples);
+    out.layers = std::move(estimate.layers);
+    out.nonFiniteSamples = estimate.nonFiniteSamples;
+    out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
+    out.counters.emplace_back("atlas_texels", double(g.texelCount));
+    out.counters.emplace_back("atlas_charts", double(g.atlas.stats.charts));
+    out.counters.emplace_back("atlas_degenerate_triangles", double(g.tables.degenerateTriangles));
+    out.counters.emplace_back("bundle_nodes_last", double(g.nodesLast));
+    out.counters.emplace_back("bundle_rebuilds", double(g.rebuilds));
+    return out;
+}
+
+} // namespace bl
