@@ -169,7 +169,7 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
     const LostWorkVerdict lost = judgeLostWork(task.mode, images);
     for (const std::string& w : lost.warnings) log::warn("task " + task.id + ": " + w);
     if (!lost.refusal.empty()) {
-        throw Error("task " + task.id + ": " + lost.refusal);
+        throw Error(lost.refusal);
     }
     const std::uint32_t frameZeroIterations = done;
     const double frameZeroWall = wall;

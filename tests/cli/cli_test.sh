@@ -147,6 +147,23 @@ lost_work)
     grep -qE "raster: [0-9]+ samples of 64 refused as NaN or infinite" "$out/some.txt" || fail "no lost-work warning"
     [[ -s "$out/some.exr" ]] || fail "missing output"
     ;;
+run_lost_work)
+    # The experiment runner applies the same verdict: the all-overflowing view fails its task (error.txt,
+    # no result), an area light raster leaves out is a warning, and the run exits non-zero.
+    cp -r data/analytic/meshes "$out/"
+    sed -e 's/^intensity = .*/intensity = [3e38, 3e38, 3e38]/' -e 's/^position  = .*/position = [0.0, 0.1, 0.0]/' \
+        -e 's/^position   = .*/position   = [0.0, 0.5, 0.0]/' -e 's/^up         = .*/up = [0.0, 0.0, 1.0]/' \
+        -e 's/^fov        = .*/fov = 10.0/' data/analytic/point-over-plane.toml >"$out/all.toml"
+    printf '[experiment]\nname = "lost"\niterations = 1\n[reference]\nenabled = false\n[[scene]]\nfile = "all.toml"\nresolution = [8, 8]\n[[scene]]\nfile = "%s"\nresolution = [8, 8]\n[[mode]]\nmode = "raster"\nsettings = { shadow_resolution = 64 }\n' \
+        "$PWD/data/cornell-box/cornell.toml" >"$out/lost.toml"
+    "$bl" run "$out/lost.toml" --out "$out/results" >"$out/stdout.txt" 2>"$out/stderr.txt" && fail "run exit code 0"
+    cat "$out/stderr.txt"
+    grep -qF "raster: every one of its 64 samples was lost" "$out/stderr.txt" || fail "no refusal in the log"
+    grep -qF "raster: the scene's area light is left out of the image" "$out/stderr.txt" || fail "no left-out warning"
+    grep -qF "every one of its 64 samples was lost" "$out"/results/tasks/*-all-*/error.txt || fail "no error.txt"
+    ls "$out"/results/tasks/*-all-*/result.csv 2>/dev/null && fail "a result row for a refused task"
+    ls "$out"/results/tasks/*-cornell-*/result.csv >/dev/null || fail "the good task has no result"
+    ;;
 lost_vpls)
     # A spot aimed at the open sky over the plane: every VPL bidir traces escapes (invalid_vpls, which
     # only the JSON record counted), so its indirect light rests on nothing: refused with the count.
