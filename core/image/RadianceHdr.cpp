@@ -63,7 +63,7 @@ public:
         return s;
     }
 
-    // `n` bytes of the pixel data at `p`, or a truncation error saying where the data stops.
+    // `n` bytes of the pixel data at `at`, or a truncation error saying where the data stops.
     const unsigned char* take(std::size_t n, const Position& at) {
         if (n > left()) {
             fail("truncated: the file ends at byte " + std::to_string(mBytes.size()) + " inside " + describe(at));
