@@ -41,18 +41,20 @@ protected:
     // Mean of each image and the largest per-pixel difference relative to the brighter pixel
     // (pixels below 1% of the image mean left out: relative noise there means nothing).
     struct Difference {
-        double ratio = 0.0;  // mean(moved) / mean(base), luminance-weighted equally over rgb
-        double worst = 0.0;  // largest |a - b| / max(a, b) over pixels
+        double ratio = 0.0;        // mean(moved) / mean(base), luminance-weighted equally over rgb
+        double worst = 0.0;        // largest |a - b| / max(a, b) over pixels
         std::size_t differing = 0; // pixels differing by more than 1%
     };
     static Difference compare(const Image& base, const Image& moved) {
         Difference d;
-        const double mb = glm::dot(base.mean(), glm::dvec3(1.0)), mm = glm::dot(moved.mean(), glm::dvec3(1.0));
+        const double mb = glm::dot(base.mean(), glm::dvec3(1.0)),
+                     mm = glm::dot(moved.mean(), glm::dvec3(1.0));
         d.ratio = mm / mb;
         for (std::size_t i = 0; i < base.pixelCount(); ++i) {
             const double a = glm::dot(glm::dvec3(base.pixels()[i]), glm::dvec3(1.0));
             const double b = glm::dot(glm::dvec3(moved.pixels()[i]), glm::dvec3(1.0));
-            if (std::max(a, b) < 0.01 * mb) continue;
+            if (std::max(a, b) < 0.01 * mb)
+                continue;
             const double rel = std::abs(a - b) / std::max(a, b);
             d.worst = std::max(d.worst, rel);
             d.differing += rel > 0.01;
@@ -90,10 +92,13 @@ TEST_F(Precision, BoxAMillionMillimetresOutRendersLikeTheBox) {
     for (const ModeCase& c : kModes) {
         const Difference d = compare(render(base, c.mode, c.iterations, c.settings).radiance(),
                                      render(moved, c.mode, c.iterations, c.settings).radiance());
-        std::printf("%-12s offset 1e6: mean ratio %.5f, %zu of %zu pixels differ by > 1%% (worst %.4f)\n", c.mode,
-                    d.ratio, d.differing, base.camera.resolution.x * std::size_t(base.camera.resolution.y), d.worst);
+        std::printf(
+            "%-12s offset 1e6: mean ratio %.5f, %zu of %zu pixels differ by > 1%% (worst %.4f)\n",
+            c.mode, d.ratio, d.differing,
+            base.camera.resolution.x * std::size_t(base.camera.resolution.y), d.worst);
         EXPECT_NEAR(d.ratio, 1.0, c.ratio) << c.mode;
-        if (c.differing >= 0.0) EXPECT_LE(double(d.differing), c.differing * 32 * 32) << c.mode;
+        if (c.differing >= 0.0)
+            EXPECT_LE(double(d.differing), c.differing * 32 * 32) << c.mode;
     }
 }
 
@@ -104,14 +109,20 @@ TEST_F(Precision, ScaledBoxRendersLikeTheBox) {
         baseImages.push_back(render(base, c.mode, c.iterations, c.settings).radiance());
     }
     for (const double scale : {1e-6, 1e-3, 1e3, 1e6}) {
-        const Scene scaled = small(loadScene(bl::test::writeMovedScene(kBox, glm::dvec3(0.0), scale)));
+        const Scene scaled =
+            small(loadScene(bl::test::writeMovedScene(kBox, glm::dvec3(0.0), scale)));
         for (std::size_t m = 0; m < std::size(kModes); ++m) {
             const ModeCase& c = kModes[m];
-            const Difference d = compare(baseImages[m], render(scaled, c.mode, c.iterations, c.settings).radiance());
-            std::printf("%-12s scale %g: mean ratio %.5f, %zu pixels differ by > 1%% (worst %.4f)\n", c.mode, scale,
-                        d.ratio, d.differing, d.worst);
+            const Difference d =
+                compare(baseImages[m], render(scaled, c.mode, c.iterations, c.settings).radiance());
+            std::printf(
+                "%-12s scale %g: mean ratio %.5f, %zu pixels differ by > 1%% (worst %.4f)\n",
+                c.mode, scale, d.ratio, d.differing, d.worst);
             EXPECT_NEAR(d.ratio, 1.0, c.ratio) << c.mode << " scale " << scale;
-            if (c.differing >= 0.0) EXPECT_LE(double(d.differing), c.differing * 32 * 32) << c.mode << " scale " << scale;
+            if (c.differing >= 0.0) {
+                EXPECT_LE(double(d.differing), c.differing * 32 * 32)
+                    << c.mode << " scale " << scale;
+            }
         }
     }
 }
@@ -126,16 +137,17 @@ TEST_F(Precision, LightOnTheFloorLightsTheCeilingInTheReferenceAsInRaster) {
         auto ceiling = [](const Image& img) {
             double sum = 0.0;
             for (int y = 1; y < 6; ++y)
-                for (int x = 8; x < 24; ++x) sum += img.at(x, y).y;
+                for (int x = 8; x < 24; ++x)
+                    sum += img.at(x, y).y;
             return sum / (5 * 16);
         };
         const double r = ceiling(raster), p = ceiling(direct);
         std::printf("light %g above the floor: ceiling raster %.5f reference %.5f\n", height, r, p);
         // Before the fix the reference read 0.00079 with the light on the floor (0.02145 at 1e-4,
-        // where the floor lies beyond the light). The same point light straight above a smooth region: raster's shadow cube
-        // and the reference agree there to 0.4% (measured); 3% leaves room for the reference's
-        // pixel jitter at 16 spp. The whole image is not compared: pixels next to the light vary
-        // as 1/d^2 within a pixel, and their jittered means move by ~9% between seeds.
+        // where the floor lies beyond the light). The same point light straight above a smooth
+        // region: raster's shadow cube and the reference agree there to 0.4% (measured); 3% leaves
+        // room for the reference's pixel jitter at 16 spp. The whole image is not compared: pixels
+        // next to the light vary as 1/d^2 within a pixel, and their means move ~9% between seeds.
         EXPECT_GT(r, 0.01);
         EXPECT_NEAR(p / r, 1.0, 0.03) << "height " << height;
     }

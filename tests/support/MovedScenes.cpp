@@ -21,7 +21,9 @@ std::string number(double v) {
     return buf;
 }
 
-std::string vector(const glm::dvec3& v) { return "[" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + "]"; }
+std::string vector(const glm::dvec3& v) {
+    return "[" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + "]";
+}
 
 } // namespace
 
@@ -29,7 +31,8 @@ std::string writeMovedScene(const std::string& relative, const glm::dvec3& offse
                             const std::string& name) {
     const fs::path source = sourcePath(relative);
     std::ifstream in(source);
-    if (!in) throw std::runtime_error("cannot read " + source.string());
+    if (!in)
+        throw std::runtime_error("cannot read " + source.string());
     // Only the forms the repository's scene files use: `key = [x, y, z]` on one line.
     const std::regex file(R"(^(\s*file\s*=\s*")([^"]+)(".*)$)");
     const std::regex point(R"(^(\s*(position|target)\s*=\s*)\[([^\]]*)\](.*)$)");

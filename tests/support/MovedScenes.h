@@ -12,7 +12,7 @@ namespace bl::test {
 // [[mesh]] given `translate = offset` and `scale = scale` (none of the files may have them), and
 // every camera/light position and target written as scale * p + offset. Light intensities are
 // multiplied by scale^2 (radiance, so every image, stays the same). Returns the new file's path.
-std::string writeMovedScene(const std::string& relative, const glm::dvec3& offset, double scale = 1.0,
-                            const std::string& name = "moved.toml");
+std::string writeMovedScene(const std::string& relative, const glm::dvec3& offset,
+                            double scale = 1.0, const std::string& name = "moved.toml");
 
 } // namespace bl::test

@@ -1,8 +1,8 @@
 // Issue 19, far coordinates: a scene far from the origin is moved near it on loading (its offset
 // kept in double), and what float cannot represent is refused with the value named.
+#include "scene/ScenePrecision.h"
 #include "base/Error.h"
 #include "scene/SceneLoader.h"
-#include "scene/ScenePrecision.h"
 #include "support/MovedScenes.h"
 #include "support/TestFiles.h"
 
@@ -57,7 +57,8 @@ TEST(ScenePrecision, FarSceneIsRecentredWithItsOffsetInDouble) {
 
 TEST(ScenePrecision, RefusesGeometryTooFarForItsSize) {
     // 1e8 mm out, float steps by 8 mm: the 966 mm box keeps 6.9 bits, below kMinResolvedBits.
-    const std::string e = errorOf([] { loadScene(writeMovedScene(kBox, glm::dvec3(1e8, 0.0, 0.0))); });
+    const std::string e =
+        errorOf([] { loadScene(writeMovedScene(kBox, glm::dvec3(1e8, 0.0, 0.0))); });
     EXPECT_NE(e.find("float coordinates step by 8"), std::string::npos) << e;
     EXPECT_NE(e.find("lies 100000560 from the origin"), std::string::npos) << e;
     // 4e6 keeps 10.9 bits: loaded (and re-centred).
@@ -74,7 +75,8 @@ TEST(ScenePrecision, RefusesCoordinatesFloatCannotSquare) {
     // A light too far away, named as such.
     const std::string path = bl::test::writeTempFile("light.toml", R"(
 [[mesh]]
-file = ")" + bl::test::sourcePath("data/cornell-box/meshes/floor.obj") + R"("
+file = ")" + bl::test::sourcePath("data/cornell-box/meshes/floor.obj") +
+                                                                       R"("
 [[light]]
 position = [0.0, 3e10, 0.0]
 intensity = [1.0, 1.0, 1.0]
