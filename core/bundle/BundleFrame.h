@@ -3,6 +3,7 @@
 #pragma once
 
 #include "base/Bounds.h"
+#include "scene/ScenePrecision.h"
 
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
@@ -13,8 +14,9 @@ namespace bl {
 
 // Depth tolerance of a bundle in units of the scene's bounding radius: fragments this close to a
 // point's own depth along its ray count as the point itself. 1e-5 of the radius is ~80 float ulps
-// of any coordinate inside the sphere, and below any modelled feature.
-inline constexpr float kBundleDepthEpsilon = 1e-5f;
+// of any coordinate inside the sphere, and below any modelled feature: the clearance every mode
+// and the reference keep (ScenePrecision.h).
+inline constexpr float kBundleDepthEpsilon = kRelativeClearance;
 // ...but never below this many float steps of the largest coordinate in the sphere: far from the
 // origin every position carries an error of its magnitude's ulp (10^4 radii away one step is
 // 6e-4 of the radius, 60x the relative tolerance), and so does every depth measured from it.

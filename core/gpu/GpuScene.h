@@ -9,6 +9,7 @@
 
 #include "atlas/AtlasLink.h"
 #include "scene/Scene.h"
+#include "scene/ScenePrecision.h"
 #include "vk/Buffer.h"
 #include "vk/GpuImage.h"
 
@@ -25,9 +26,11 @@ struct GpuDraw {
 };
 
 // Near planes, as a fraction of the scene's bounding radius: small enough that no real geometry is
-// clipped, large enough for reversed float depth to keep ~20 bits of precision everywhere.
+// clipped, large enough for reversed float depth to keep ~20 bits of precision everywhere. The
+// shadow near plane is the clearance the reference keeps from a point light (ScenePrecision.h):
+// a surface nearer the light than that casts no shadow in any mode.
 inline constexpr float kCameraNearFraction = 1e-5f;
-inline constexpr float kShadowNearFraction = 1e-5f;
+inline constexpr float kShadowNearFraction = kRelativeClearance;
 
 // The plane of triangle (a, b, c): vec4(unit front normal n, n . a), computed in double so that
 // slivers, and triangles near float's range limits, get their exact plane. A triangle without one
@@ -45,7 +48,7 @@ public:
     const SceneFeatures& features() const { return mFeatures; }
     float radius() const { return mRadius; }
     float cameraNear() const { return kCameraNearFraction * mRadius; }
-    float shadowNear() const { return kShadowNearFraction * mRadius; }
+    float shadowNear() const { return lightClearance(mRadius); }
 
     VkBuffer vertexBuffer() const { return mVertices.get(); }
     VkBuffer indexBuffer() const { return mIndices.get(); }

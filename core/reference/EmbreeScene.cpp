@@ -1,6 +1,7 @@
 #include "reference/EmbreeScene.h"
 
 #include "base/Error.h"
+#include "scene/ScenePrecision.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,9 +11,9 @@
 namespace bl {
 
 namespace {
-// Ray offset in units of the triangle's largest coordinate: ~140 float ulps, well above the
-// error of a barycentric hit point (a few ulps) and below any modelled detail.
-constexpr float kRelativeRayOffset = 1.0e-5f;
+// Ray offset in units of the triangle's largest coordinate: the clearance every mode keeps
+// (ScenePrecision.h), ~140 float ulps, well above the error of a barycentric hit point.
+constexpr float kRelativeRayOffset = kRelativeClearance;
 
 void onEmbreeError(void*, RTCError code, const char* message) {
     // Embree calls back from its own threads; errors are re-checked after each build.
@@ -48,7 +49,8 @@ RTCRayHit makeRayHit(const glm::vec3& origin, const glm::vec3& direction, float 
 }
 } // namespace
 
-EmbreeScene::EmbreeScene(const Scene& scene, double time) : mScene(&scene), mTime(time) {
+EmbreeScene::EmbreeScene(const Scene& scene, double time)
+    : mScene(&scene), mTime(time), mLightClearance(bl::lightClearance(scene.bounds().radius())) {
     mDevice = rtcNewDevice(nullptr);
     if (!mDevice) {
         throw Error("Embree: cannot create a device (" + std::to_string(rtcGetDeviceError(nullptr)) + ")");
@@ -184,6 +186,15 @@ std::vector<EmbreeScene::RayHit> EmbreeScene::allHits(const glm::vec3& origin, c
     }
     std::sort(hits.begin(), hits.end(), [](const RayHit& a, const RayHit& b) { return a.t < b.t; });
     return hits;
+}
+
+bool EmbreeScene::occludedFromLight(const glm::vec3& from, const glm::vec3& light) const {
+    const glm::vec3 d = light - from;
+    const float length = glm::length(d);
+    const float reach = length - mLightClearance;
+    // Within the clearance of the light nothing can stand between them (a light lying on a
+    // surface lights both of its sides, as the GPU's shadow near plane makes it).
+    return reach > 0.0f && occluded(from, d / length, reach);
 }
 
 bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tMax) const {

@@ -40,6 +40,11 @@ public:
 
     // True if anything lies on the open segment origin + t direction, 0 < t < tMax.
     bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tMax) const;
+    // The shadow ray to a point or spot light: true if anything lies between `from` (already
+    // offset off its surface) and lightClearance() short of `light`. A surface closer to the light
+    // than that does not shadow it: the convention every mode shares (ScenePrecision.h).
+    bool occludedFromLight(const glm::vec3& from, const glm::vec3& light) const;
+    float lightClearance() const { return mLightClearance; }
 
     // World-space vertices of a triangle (at the baked time).
     void triangle(std::uint32_t mesh, std::uint32_t tri, glm::vec3& a, glm::vec3& b, glm::vec3& c) const;
@@ -54,6 +59,7 @@ public:
 private:
     const Scene* mScene;
     double mTime = 0.0;
+    float mLightClearance = 0.0f; // ScenePrecision.h's lightClearance of the scene's radius
     RTCDevice mDevice = nullptr;
     RTCScene mRtcScene = nullptr;
     std::vector<std::vector<glm::vec3>> mPositions; // world space, per mesh

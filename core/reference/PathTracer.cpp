@@ -132,7 +132,7 @@ PathSample PathTracer::trace(int x, int y, std::uint32_t sampleIndex, std::uint3
             float profile = shader::blLightProfile(light, -wl);
             if (cosine <= 0.0f || glm::dot(ng, wl) <= 0.0f || profile <= 0.0f) continue;
             ++out.rays;
-            if (mGeometry->occluded(above, wl, glm::length(light.position - above))) continue;
+            if (mGeometry->occludedFromLight(above, light.position)) continue;
             glm::vec3 f = shader::blEvalBrdf(m, albedo, ns, wl, wi);
             add(segments + 1, throughput * f * light.intensity * (profile * cosine / dist2));
         }

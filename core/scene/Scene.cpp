@@ -1,5 +1,7 @@
 #include "scene/Scene.h"
 
+#include "base/Error.h"
+
 #include <sstream>
 
 namespace bl {
@@ -39,6 +41,7 @@ SceneFeatures Scene::features() const {
     f.meshes = meshes.size();
     f.materials = materials.size();
     f.bounds = bounds();
+    f.origin = origin;
     for (const Material& m : materials) {
         f.glossy |= m.glossy();
         f.anisotropic |= m.glossy() && m.anisotropic();
@@ -77,6 +80,10 @@ std::string SceneFeatures::describe() const {
           << bounds.hi.x << ", " << bounds.hi.y << ", " << bounds.hi.z << "]  (radius " << bounds.radius()
           << ")\n";
     }
+    if (origin != glm::dvec3(0.0)) {
+        s << "origin           [" << formatNumber(origin.x) << ", " << formatNumber(origin.y) << ", " << formatNumber(origin.z)
+          << "]  (re-centred: bounds and renderers are relative to it)\n";
+    }
     s << "point lights     " << pointLights << "\n"
       << "spot lights      " << spotLights << "\n"
       << "emissive meshes  " << emissiveMeshes << " (" << emissiveTriangles << " triangles)\n"
@@ -114,31 +121,34 @@ void scaleScene(Scene& scene, float factor) {
     }
 }
 
-void translateScene(Scene& scene, const glm::vec3& offset) {
+void translateScene(Scene& scene, const glm::dvec3& offset) {
+    // In double, so that a far scene moved back near the origin (recentreFarScene) keeps every bit
+    // its floats had: the difference of two nearby floats is exact.
+    auto move = [&offset](glm::vec3& p) { p = glm::vec3(glm::dvec3(p) + offset); };
     for (Mesh& m : scene.meshes) {
         if (m.animation.keys().empty()) {
             for (glm::vec3& p : m.positions) {
-                p += offset;
+                move(p);
             }
             continue;
         }
         // Animated meshes move by their keyframes' translation (applied after their rotation).
         RigidAnimation moved;
         for (RigidKeyframe k : m.animation.keys()) {
-            k.translate += offset;
+            move(k.translate);
             moved.addKey(k);
         }
         m.animation = moved;
     }
     for (Light& l : scene.lights) {
-        l.position += offset;
+        move(l.position);
         for (LightKeyframe& k : l.keys) {
-            k.position += offset;
+            move(k.position);
         }
     }
-    auto movePose = [&offset](CameraPose& p) {
-        p.position += offset;
-        p.target += offset;
+    auto movePose = [&move](CameraPose& p) {
+        move(p.position);
+        move(p.target);
     };
     movePose(scene.camera.pose);
     for (CameraKeyframe& k : scene.camera.keys) {

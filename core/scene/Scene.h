@@ -24,6 +24,10 @@ struct LoadStats {
 
 struct Scene {
     std::string path; // the file it was loaded from ("" if built in code)
+    // Where the scene's local frame sits in the file's world: every position below is relative to
+    // it. Loaders move a far scene near the origin (ScenePrecision.h) so that renderers work in
+    // centred floats; zero otherwise.
+    glm::dvec3 origin{0.0};
     Camera camera;
     std::vector<Material> materials;
     std::vector<Texture> textures;
@@ -45,8 +49,9 @@ struct Scene {
 // therefore every image) stays the same: the check that nothing depends on absolute scale.
 void scaleScene(Scene& scene, float factor);
 
-// Moves every position (geometry, its keyframes, lights, camera) by `offset`: the same image, the
-// check that nothing depends on where the scene sits (float steps grow with the distance).
-void translateScene(Scene& scene, const glm::vec3& offset);
+// Moves every position (geometry, its keyframes, lights, camera) by `offset`, each sum rounded
+// once to float: the same image, the check that nothing depends on where the scene sits (float
+// steps grow with the distance). `origin` is left alone: the scene itself moves.
+void translateScene(Scene& scene, const glm::dvec3& offset);
 
 } // namespace bl

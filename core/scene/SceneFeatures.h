@@ -12,7 +12,8 @@ struct SceneFeatures {
     std::size_t triangles = 0;
     std::size_t meshes = 0;
     std::size_t materials = 0;
-    Bounds bounds;
+    Bounds bounds;            // in the scene's local frame
+    glm::dvec3 origin{0.0};   // where that frame sits in the file's world (Scene::origin)
     bool glossy = false;      // any material with a specular lobe
     bool anisotropic = false; // any Ashikhmin-Shirley material
     bool textured = false;    // any albedo texture

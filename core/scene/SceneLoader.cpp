@@ -7,6 +7,7 @@
 #include "scene/MeshCleanup.h"
 #include "scene/MeshFile.h"
 #include "scene/MtlLoader.h"
+#include "scene/ScenePrecision.h"
 #include "scene/ShaderConversions.h"
 
 #include <algorithm>
@@ -525,6 +526,11 @@ Scene loadScene(const std::string& path) {
     std::string ext = fs::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     Scene scene = ext == ".toml" ? loadTomlScene(path) : loadBareMesh(path);
+    requireRepresentable(scene);
+    if (recentreFarScene(scene)) {
+        log::info(path + ": far from the origin; renderers work relative to its centre " + formatNumber(scene.origin.x) +
+                  ", " + formatNumber(scene.origin.y) + ", " + formatNumber(scene.origin.z));
+    }
     const LoadStats& s = scene.loadStats;
     if (s.degenerateTriangles || s.duplicateTriangles || s.repairedNormals) {
         log::info(path + ": dropped " + std::to_string(s.degenerateTriangles) + " degenerate and " +
