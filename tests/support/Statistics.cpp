@@ -235,4 +235,22 @@ std::vector<bool> holmRejects(const std::vector<double>& pValues, double alpha) 
     return ::testing::AssertionFailure() << failures.str();
 }
 
+::testing::AssertionResult pairedRegionsAgree(const std::vector<std::vector<double>>& a,
+                                              const std::vector<std::vector<double>>& b, const RegionOptions& options,
+                                              const std::string& what) {
+    if (a.size() != b.size() || a.empty()) {
+        return ::testing::AssertionFailure() << what << ": " << a.size() << " and " << b.size()
+                                             << " seeds: a paired comparison needs the same seeds";
+    }
+    // b's seed mean per region is the scale; a_s - b_s + mean(b) has the paired difference's
+    // spread about that mean, so the region test of it is the paired test.
+    std::vector<double> scale(b.front().size(), 0.0);
+    for (const auto& seed : b)
+        for (std::size_t r = 0; r < scale.size(); ++r) scale[r] += seed.at(r) / double(b.size());
+    std::vector<std::vector<double>> shifted = a;
+    for (std::size_t s = 0; s < a.size(); ++s)
+        for (std::size_t r = 0; r < scale.size(); ++r) shifted[s].at(r) = a[s].at(r) - b[s].at(r) + scale[r];
+    return regionsAgree(shifted, scale, options, what + " (paired difference)");
+}
+
 } // namespace bl::test::stats

@@ -97,6 +97,13 @@ struct RegionOptions {
                                         const std::vector<double>& reference, const RegionOptions& options,
                                         const std::string& what);
 
+// Per-region paired comparison of two estimators on common random numbers (a[s][r] and b[s][r]
+// from the same seed s): per region the difference a - b against 0, with a tolerance of
+// relativeTolerance times b's region mean (floored as above), Holm-corrected, behind the gate.
+::testing::AssertionResult pairedRegionsAgree(const std::vector<std::vector<double>>& a,
+                                              const std::vector<std::vector<double>>& b, const RegionOptions& options,
+                                              const std::string& what);
+
 // Holm's step-down procedure: which of the hypotheses with these p-values are rejected at
 // family-wise rate alpha (Bonferroni's alpha / m for the smallest, alpha / (m - 1) next, ...).
 std::vector<bool> holmRejects(const std::vector<double>& pValues, double alpha);
