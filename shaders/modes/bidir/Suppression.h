@@ -3,8 +3,9 @@
 // local directional sample density over m neighbours, max D <= d(y_i) / m (Eq. 9).
 //   none       the BRDF as it is (unbiased, spiky where samples are sparse)
 //   clamp      D truncated at d / m: f times min(1, (d / m) / D(theta)) (energy lost)
-//   roughness  the exponent lowered until max D = d / m (Eq. 10 Phong, Eq. 11-12 per axis for
-//              Ashikhmin-Shirley): the lobe widens, its albedo stays
+//   roughness  the exponent lowered until max D = d / m (Eq. 10 Phong with m of the widened lobe:
+//              n <= 2 pi d / (m' s cos) - 2, Eq. 11-12 per axis for Ashikhmin-Shirley): the lobe
+//              widens, its albedo stays
 // with Phong D = (a + 1) / (2 pi) cos^a and Ashikhmin-Shirley D = sqrt((a_x + 1)(a_y + 1)) / (2 pi)
 // cos^(...) (their peaks (a + 1) / (2 pi) and sqrt((a_x + 1)(a_y + 1)) / (2 pi)), and
 // m = m' f (n . w_i) / D (the text after Eq. 17; m' = `suppression_neighbours`, 16 in the paper).
@@ -83,7 +84,13 @@ BL_INLINE vec3 blBidirEvalBrdf(GpuMaterial m, vec3 albedo, vec3 n, vec3 wi, vec3
         return blLambert(albedo) + blAshikhminShirleyLobe(m.specular, blBidirClampedExponent(m.exponentU, allowed),
                                                           blBidirClampedExponent(m.exponentV, allowed), n, t, b, wi, wo);
     }
-    return blLambert(albedo) + blPhongLobe(m.specular, blBidirClampedExponent(m.exponentU, allowed), n, wi, wo);
+    // Phong: D cancels from Eq. 9 (m = m' f cos / D), which bounds the lobe itself,
+    // m' cos_i s (n' + 2) / (2 pi) <= d, so n' = 2 pi d / (m' s cos_i) - 2 (CONVENTIONS.md). Eq. 10
+    // with the original exponent's m (allowed) would leave the widened lobe's peak above the bound
+    // (by a factor up to (a + 2) / (a + 1)): d / (m' s cos_i) = allowed (a + 2) / (a + 1).
+    float lobePeak = allowed * (m.exponentU + 2.0f) / (m.exponentU + 1.0f);
+    return blLambert(albedo) +
+           blPhongLobe(m.specular, max(0.0f, min(m.exponentU, 2.0f * kPi * lobePeak - 2.0f)), n, wi, wo);
 }
 
 BL_NAMESPACE_END

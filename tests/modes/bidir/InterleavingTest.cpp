@@ -7,6 +7,7 @@
 #include "modes/Registry.h"
 #include "modes/reference/ReferenceTestSupport.h"
 #include "scene/SceneLoader.h"
+#include "support/Statistics.h"
 #include "support/TestFiles.h"
 #include "support/VulkanTest.h"
 
@@ -17,6 +18,7 @@
 #include <set>
 
 using namespace bl;
+namespace stats = bl::test::stats;
 
 namespace {
 
@@ -84,6 +86,39 @@ TEST(InterleaveMaps, SplitAndGatherAreInversePermutations) {
     }
 }
 
+// The blur's taps over offsets -n/2..n/2 (interleave.comp.glsl): every sub-image (offset residue
+// mod n) carries total weight 1 on each axis, so on flat geometry the blur is the plain mean of the
+// n^2 sub-images' estimates (each with K / n^2 pairs: unbiased, all K pairs together), and the
+// kernel is symmetric (no shift of the image). The suppression density counts all K pairs with the
+// blur, the sub-image's own without. The temporal depth weight ([TO12s] Eq. 3) is 1 at equal
+// depths, exp(-1 / 2 sigma^2) one e-fold apart, symmetric in log depth; the four sub-pixel centres
+// average to the pixel centre.
+TEST(InterleaveWeights, ClosedForms) {
+    for (std::uint32_t n = 1; n <= 8; ++n) {
+        const int r = int(n / 2);
+        std::vector<double> perSubImage(n, 0.0);
+        for (int d = -r; d <= r; ++d) {
+            perSubImage[std::size_t(((d % int(n)) + int(n)) % int(n))] += shader::blInterleaveTap(d, n);
+            EXPECT_EQ(shader::blInterleaveTap(d, n), shader::blInterleaveTap(-d, n)) << "n " << n << " d " << d;
+        }
+        for (std::uint32_t c = 0; c < n; ++c) EXPECT_DOUBLE_EQ(perSubImage[c], 1.0) << "n " << n << " sub-image " << c;
+    }
+    EXPECT_EQ(shader::blInterleaveDensityPairs(64, 16, 1), 64.0f);
+    EXPECT_EQ(shader::blInterleaveDensityPairs(64, 16, 0), 16.0f);
+    for (float twoSigma2 : {1e-4f, 0.5f}) {
+        EXPECT_FLOAT_EQ(shader::blTemporalDepthWeight(3.7f, 3.7f, twoSigma2), 1.0f);
+        const float e = float(std::exp(1.0));
+        EXPECT_NEAR(shader::blTemporalDepthWeight(2.0f * e, 2.0f, twoSigma2), std::exp(-1.0 / twoSigma2), 1e-6);
+        EXPECT_NEAR(shader::blTemporalDepthWeight(2.0f * 1.01f, 2.0f, twoSigma2),
+                    shader::blTemporalDepthWeight(2.0f / 1.01f, 2.0f, twoSigma2), 1e-6);
+    }
+    glm::vec2 centre(0.0f);
+    for (std::uint32_t i = 0; i < 4; ++i) centre += 0.25f * shader::blTemporalSubPixel(i);
+    EXPECT_EQ(centre, glm::vec2(0.5f));
+    EXPECT_EQ(shader::blTemporalSubPixel(0), glm::vec2(0.25f));
+    EXPECT_EQ(shader::blTemporalSubPixel(3), glm::vec2(0.75f));
+}
+
 // With the blur off, interleave = 2 shades every pixel once at its own place (direct light and
 // emission the same to the bit as interleave = 1), and sub-image s evaluates pair s only of a
 // 4-pair frame: sub-image 0's indirect light equals a 1-pair frame's (the same VPL, index 0) to
@@ -117,34 +152,47 @@ TEST_F(Interleaving, GatherShadesEveryPixelOnceWithItsSubImagesPairs) {
     for (int sub = 1; sub < 4; ++sub) EXPECT_LT(equal[sub], lit[sub] / 10) << "sub-image " << sub;
 }
 
-// interleave = 2 against the reference's indirect1 (Cornell box, point light, 32^2, VPL strategy,
-// 8 pairs per frame: 2 per sub-image), 4 seeds x 64 frames, the same seeds with the blur on and
-// off (the same samples: their difference is the blur's alone). Unfiltered, the gathered image
-// converges (image mean within 3% + 3 sigma, every 8 x 8 region within 10% + 3 sigma: the VPL
-// strategy's corner deficit, see BidirTest.cpp); the blur must remove at least half the per-pixel
-// variance across seeds and keep its image mean within 3% + 3 sigma of the reference (the bias it
-// keeps is printed: region means, paired with the unfiltered runs).
+// interleave = 2 (Cornell box, point light, 32^2, MIS with bounces = 1, 8 pairs per frame: 2 per
+// sub-image) against interleave = 1 with the same seeds (the same K pairs per frame: every pixel
+// sees all K instead of its sub-image's K / 4), 8 seeds x 16 frames, and the blur on and off (the
+// same samples: their difference is the blur's alone). Paired on common random numbers
+// (tests/support/Statistics.h): the VPLs' noise, which every pixel of a run shares (image mean
+// +-1.8% over seeds at 16 frames x 16 pairs, experiments/bidir-interleaving.md), cancels in the
+// differences, so interleave = 1 stands in for the reference (BidirTest holds it to the reference).
+// Unfiltered, the gathered image estimates what interleave = 1 does: image mean within 2%, every
+// 8 x 8 region within 5% (BidirTest's region tolerance; regions below a quarter of the mean region,
+// the corner behind the short block at 15%, held to 5% of that quarter, as in BidirTest),
+// Holm-corrected, behind the noise gate;
+// the blur keeps the image mean within 2% of the unfiltered (its bias: +0.16% measured there) and
+// must remove at least half the per-pixel variance across seeds (the bias it keeps per region is
+// printed, paired with the unfiltered runs).
 TEST_F(Interleaving, GatheredImageConvergesAndBlurRemovesVariance) {
-    constexpr std::uint32_t kSeeds = 4, kFrames = 64;
+    constexpr std::uint32_t kSeeds = 8, kFrames = 16;
+    constexpr double kDimRegion = 0.25;
     constexpr int kSide = 8, kRegions = kResolution / kSide;
     const Scene s = cornellPoint();
     const Image& ref = referenceIndirect1();
-    const std::vector<std::string> base = {"strategy=vpl", "bounces=1", "pairs_per_frame=8", "interleave=2"};
-    auto with = [&](const std::string& e) {
+    const std::vector<std::string> base = {"strategy=mis", "bounces=1", "pairs_per_frame=8"};
+    auto with = [&](const std::string& a, const std::string& b) {
         auto v = base;
-        v.push_back(e);
+        v.push_back(a);
+        v.push_back(b);
         return v;
     };
-    std::vector<std::vector<double>> off, on; // per seed, per pixel luminance
+    std::vector<std::vector<double>> off, on, whole; // per seed, per pixel luminance
     auto pixels = [](const Image& im) {
         std::vector<double> v;
         for (int y = 0; y < kResolution; ++y)
             for (int x = 0; x < kResolution; ++x) v.push_back(luminance(im.at(x, y)));
         return v;
     };
-    for (std::uint32_t seed = 1; seed <= kSeeds; ++seed) {
-        off.push_back(pixels(bl::test::layerOf(render(s, with("interleave_filter=off"), kFrames, seed), "indirect1")));
-        on.push_back(pixels(bl::test::layerOf(render(s, with("interleave_filter=on"), kFrames, seed), "indirect1")));
+    for (std::uint32_t seed : stats::seeds(kSeeds)) {
+        off.push_back(pixels(bl::test::layerOf(render(s, with("interleave=2", "interleave_filter=off"), kFrames, seed),
+                                               "indirect1")));
+        on.push_back(pixels(bl::test::layerOf(render(s, with("interleave=2", "interleave_filter=on"), kFrames, seed),
+                                              "indirect1")));
+        whole.push_back(pixels(bl::test::layerOf(render(s, with("interleave=1", "interleave_filter=off"), kFrames, seed),
+                                                 "indirect1")));
     }
     const std::vector<double> reference = pixels(ref);
     const double n = kResolution * kResolution;
@@ -163,16 +211,38 @@ TEST_F(Interleaving, GatheredImageConvergesAndBlurRemovesVariance) {
         stderr_ = std::sqrt(m2 / kSeeds);
         return m;
     };
-    auto all = [](int) { return true; };
     double refMean = 0.0;
     for (double v : reference) refMean += v / n;
-    double seOff = 0.0, seOn = 0.0;
-    const double meanOff = meanOver(off, all, seOff), meanOn = meanOver(on, all, seOn);
-    std::printf("image mean: reference %.5f, blur off %.5f +- %.5f (%+.2f%%), blur on %.5f +- %.5f (%+.2f%%)\n",
-                refMean, meanOff, seOff, 100.0 * (meanOff / refMean - 1.0), meanOn, seOn,
-                100.0 * (meanOn / refMean - 1.0));
-    EXPECT_NEAR(meanOff, refMean, 0.03 * refMean + 3.0 * seOff);
-    EXPECT_NEAR(meanOn, refMean, 0.03 * refMean + 3.0 * seOn);
+    // Per seed, the image means and the region means.
+    auto imageOf = [&](const std::vector<double>& v) {
+        double m = 0.0;
+        for (double p : v) m += p / n;
+        return m;
+    };
+    auto regionsOf = [&](const std::vector<double>& v) {
+        std::vector<double> regions(kRegions * kRegions, 0.0);
+        for (int i = 0; i < int(n); ++i) regions[(i / kResolution / kSide) * kRegions + (i % kResolution) / kSide] += v[i] / (kSide * kSide);
+        return regions;
+    };
+    std::vector<double> imageOff, imageOn, imageWhole;
+    std::vector<std::vector<double>> regionsOff, regionsWhole;
+    for (std::uint32_t k = 0; k < kSeeds; ++k) {
+        imageOff.push_back(imageOf(off[k]));
+        imageOn.push_back(imageOf(on[k]));
+        imageWhole.push_back(imageOf(whole[k]));
+        regionsOff.push_back(regionsOf(off[k]));
+        regionsWhole.push_back(regionsOf(whole[k]));
+    }
+    const stats::Summary meanOff = stats::summarize(imageOff), meanOn = stats::summarize(imageOn),
+                         meanWhole = stats::summarize(imageWhole);
+    std::printf("image mean: reference %.5f, interleave 1 %.5f +- %.5f, blur off %.5f +- %.5f (%+.2f%%), blur on %.5f "
+                "+- %.5f (%+.2f%%)\n",
+                refMean, meanWhole.mean, meanWhole.stderr_, meanOff.mean, meanOff.stderr_,
+                100.0 * (meanOff.mean / refMean - 1.0), meanOn.mean, meanOn.stderr_, 100.0 * (meanOn.mean / refMean - 1.0));
+    EXPECT_TRUE(stats::strategiesAgree(imageOff, imageWhole, 0.02, "interleave 2 (blur off) vs 1, image mean"));
+    EXPECT_TRUE(stats::strategiesAgree(imageOn, imageOff, 0.02, "blur on vs off, image mean"));
+    EXPECT_TRUE(stats::pairedRegionsAgree(regionsOff, regionsWhole, {0.05, kDimRegion, stats::kAlpha},
+                                          "interleave 2 (blur off) vs 1"));
     for (int r = 0; r < kRegions * kRegions; ++r) {
         auto inside = [&](int i) { return (i / kResolution / kSide) * kRegions + (i % kResolution) / kSide == r; };
         double refRegion = 0.0, seR = 0.0, seB = 0.0;
@@ -182,7 +252,6 @@ TEST_F(Interleaving, GatheredImageConvergesAndBlurRemovesVariance) {
         std::printf("region %2d: reference %.5f, blur off %+.1f +- %.1f%%, blur on %+.1f +- %.1f%%\n", r, refRegion,
                     100.0 * (a / refRegion - 1.0), 100.0 * seR / refRegion, 100.0 * (b / refRegion - 1.0),
                     100.0 * seB / refRegion);
-        EXPECT_NEAR(a, refRegion, 0.10 * refRegion + 3.0 * seR) << "region " << r;
     }
     // Per-pixel variance across seeds, averaged over the image.
     auto pixelVariance = [&](const std::vector<std::vector<double>>& runs) {
