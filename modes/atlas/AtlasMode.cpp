@@ -125,6 +125,13 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     log::info("atlas: " + std::to_string(g->atlas.maps.width) + "x" + std::to_string(g->atlas.maps.height) + " x " +
               std::to_string(g->atlas.maps.pages) + " page(s), " + std::to_string(g->atlas.stats.charts) +
               " charts, utilization " + std::to_string(g->atlas.stats.utilization));
+    if (g->atlas.stats.isolatedTriangles > 0) {
+        log::warn("atlas: " + std::to_string(g->atlas.stats.isolatedTriangles) +
+                  " triangles are too thin for a texel of their own at atlas_resolution " +
+                  std::to_string(atlasOptions.size) + " (slivers, or triangles crowded within a texel) and got " +
+                  "charts of their own: " + std::to_string(g->atlas.maps.pages) +
+                  " page(s); their texels see few hits each (noisy, not biased). Raise atlas_resolution or remesh");
+    }
     if (g->tables.degenerateTriangles > 0) {
         log::warn("atlas: " + std::to_string(g->tables.degenerateTriangles) +
                   " triangles have no atlas area; their hits exchange nothing");
