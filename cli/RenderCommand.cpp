@@ -99,6 +99,13 @@ void renderFrame(const RenderOptions& o, const FrameSchedule& schedule, std::uin
         throw;
     }
     ImageSet images = mode.resolve();
+    // Lost work is reported at the end of every render; an image built on none of its work is
+    // refused before it is written (checkpoints and earlier frames already written stay).
+    const LostWorkVerdict lost = judgeLostWork(o.mode, images);
+    for (const std::string& w : lost.warnings) log::warn(w);
+    if (!lost.refusal.empty()) {
+        throw Error(lost.refusal + " (" + out + ")");
+    }
     std::vector<std::string> written = writeRenderOutputs(out, images, mode, record);
     const double samples = double(images.radiance().pixelCount()) * done;
     if (schedule.frames > 1) {
@@ -111,9 +118,6 @@ void renderFrame(const RenderOptions& o, const FrameSchedule& schedule, std::uin
         std::printf("%s: %.6g (%.4g per second)\n", name.c_str(), value, value / std::max(record.wallSeconds, 1e-9));
     }
     printTimings(mode);
-    if (images.nonFiniteSamples) {
-        log::warn(std::to_string(images.nonFiniteSamples) + " NaN/Inf samples were discarded");
-    }
     for (const std::string& f : written) {
         std::cout << "wrote " << f << "\n";
     }
@@ -138,6 +142,8 @@ int runRender(const RenderOptions& o) {
         device = ctx->info().describe();
         std::cout << "device: " << device << "\n";
     }
+    // Once per render, before any work: what of the scene's light this mode leaves out.
+    for (const std::string& w : lightsLeftOut(*mode, scene)) log::warn(w);
     RenderRecord record{o.scene, o.mode, device, o.seed};
     for (std::uint32_t frame = 0; frame < schedule.frames; ++frame) {
         const std::string out = schedule.frames > 1 ? framePath(o.out, frame) : o.out;

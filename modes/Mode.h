@@ -8,6 +8,7 @@
 #include "base/PassTime.h"
 #include "config/Settings.h"
 #include "image/Image.h"
+#include "modes/LostWork.h"
 
 #include <cstdint>
 #include <string>
@@ -39,6 +40,7 @@ struct ImageSet {
     std::uint64_t nonFiniteSamples = 0; // samples discarded as NaN/Inf (never averaged in)
     std::uint32_t iterations = 0;
     std::vector<std::pair<std::string, double>> counters; // mode statistics, e.g. {"rays", 1.2e9}
+    std::vector<LostWork> lost; // work thrown away; drivers warn and refuse (modes/LostWork.h)
 
     const Image& radiance() const { return layers.at(0).second; }
 };
@@ -48,6 +50,9 @@ struct PlannedPass {
     std::string name;
     bool runs = true;
     std::string reason;
+    // The scene has a light this mode leaves out of its image (an area light in raster, a point
+    // light in skylight): drivers warn at render time, not only in `bundlelab plan`.
+    bool lightLeftOut = false;
 };
 
 class Mode {
@@ -65,5 +70,9 @@ public:
     // The passes this mode runs for the scene given to setScene (or would, before it).
     virtual std::vector<PlannedPass> plan(const Scene& scene) const = 0;
 };
+
+// One warning line per light the scene has and `mode` leaves out (its plan's lightLeftOut passes),
+// for drivers to print once per render.
+std::vector<std::string> lightsLeftOut(const Mode& mode, const Scene& scene);
 
 } // namespace bl

@@ -39,6 +39,8 @@ public:
     bool boolean(const std::string& key);
     glm::vec3 vec3(const std::string& key);
     glm::ivec2 ivec2(const std::string& key);
+    // `count` finite numbers in double precision, before any narrowing to float.
+    std::vector<double> numbers(const std::string& key, std::size_t count);
 
     // Optional values: absent gives the default; present but invalid is an error.
     double number(const std::string& key, double fallback);
@@ -73,7 +75,6 @@ public:
 private:
     const toml::node* find(const std::string& key);
     const toml::node& require(const std::string& key);
-    std::vector<double> numbers(const std::string& key, std::size_t count);
 
     const toml::table* mTable;
     std::string mFile;

@@ -66,6 +66,7 @@ AccumulatedImages Accumulator::resolve(const vk::Context& ctx, std::uint32_t exp
     const std::vector<glm::dvec3> squares = downloadSums(ctx, mImage, shader::kAccumSquareSum);
 
     AccumulatedImages out;
+    out.expectedSamples = std::uint64_t(expected) * std::uint64_t(width) * std::uint64_t(height);
     Image mean(width, height), variance(width, height);
     for (std::size_t i = 0; i < mean.pixelCount(); ++i) {
         const auto added = static_cast<std::uint32_t>(totals[i].w);

@@ -37,6 +37,7 @@ struct AccumulatedImages {
     std::vector<std::pair<std::string, Image>> layers;
     std::uint64_t nonFiniteSamples = 0; // refused as NaN/Inf, summed over pixels
     std::uint64_t droppedSamples = 0;   // never added, summed over pixels
+    std::uint64_t expectedSamples = 0;  // samples per pixel asked for x pixels: what the two are parts of
 };
 
 class Accumulator {

@@ -1,6 +1,7 @@
 #include "image/ImageIO.h"
 
 #include "base/Error.h"
+#include "image/RadianceHdr.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -170,29 +171,19 @@ Image readExr(const std::string& path, const std::string& layer) {
     }
 }
 
+// 8-bit formats only: Radiance HDR goes to our own reader (stb's can hang on a truncated file).
 Image readStb(const std::string& path) {
     int w = 0, h = 0, n = 0;
-    Image image;
-    if (stbi_is_hdr(path.c_str())) {
-        float* data = stbi_loadf(path.c_str(), &w, &h, &n, 3);
-        if (!data) {
-            throw Error(path + ": cannot read image: " + stbi_failure_reason());
-        }
-        image = Image(w, h);
-        std::copy(data, data + static_cast<std::size_t>(w) * h * 3, &image.pixels()[0].x);
-        stbi_image_free(data);
-    } else {
-        unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, 3);
-        if (!data) {
-            throw Error(path + ": cannot read image: " + stbi_failure_reason());
-        }
-        image = Image(w, h);
-        float* out = &image.pixels()[0].x;
-        for (std::size_t i = 0; i < static_cast<std::size_t>(w) * h * 3; ++i) {
-            out[i] = srgbToLinear(data[i] / 255.0f);
-        }
-        stbi_image_free(data);
+    unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, 3);
+    if (!data) {
+        throw Error(path + ": cannot read image: " + stbi_failure_reason());
     }
+    Image image(w, h);
+    float* out = &image.pixels()[0].x;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(w) * h * 3; ++i) {
+        out[i] = srgbToLinear(data[i] / 255.0f);
+    }
+    stbi_image_free(data);
     return image;
 }
 
@@ -200,7 +191,11 @@ Image readStb(const std::string& path) {
 
 Image readImage(const std::string& path, const std::string& layer) {
     requireFile(path);
-    Image image = lowerExtension(path) == ".exr" ? readExr(path, layer) : readStb(path);
+    // Radiance HDR by its extension or its magic line, so that stb never sees one (even cut short).
+    const std::string ext = lowerExtension(path);
+    Image image = ext == ".exr"                                 ? readExr(path, layer)
+                  : ext == ".hdr" || isRadianceHdrFile(path) ? readRadianceHdr(path)
+                                                                : readStb(path);
     if (std::size_t bad = image.countNonFinite()) {
         throw Error(path + ": " + std::to_string(bad) + " pixels are NaN or infinite");
     }
@@ -209,6 +204,9 @@ Image readImage(const std::string& path, const std::string& layer) {
 
 Rgba8Image readRgba8(const std::string& path) {
     requireFile(path);
+    if (isRadianceHdrFile(path)) {
+        throw Error(path + ": a Radiance HDR image cannot be an 8-bit texture");
+    }
     int w = 0, h = 0, n = 0;
     unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, 4);
     if (!data) {

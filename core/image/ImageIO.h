@@ -29,8 +29,9 @@ void writePng(const std::string& path, const Image& image, float exposure = 0.0f
 // no EXR reader exists. Written atomically.
 void writePfm(const std::string& path, const Image& image);
 
-// Reads the main RGB layer (or the named layer) of an EXR, a Radiance .hdr, or an 8-bit image
-// (PNG/JPEG/…, decoded from sRGB to linear). Errors name the file.
+// Reads the main RGB layer (or the named layer) of an EXR, a Radiance .hdr (our bounds-checked
+// reader, image/RadianceHdr.h, by extension or magic line), or an 8-bit image (PNG/JPEG/…, decoded
+// from sRGB to linear). Errors name the file.
 Image readImage(const std::string& path, const std::string& layer = "");
 
 // Reads an 8-bit texture without decoding, for the GPU's sRGB formats.

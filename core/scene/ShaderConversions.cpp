@@ -11,12 +11,17 @@ shader::GpuLight toGpuLight(const Light& l) {
     g.intensity = l.intensity;
     g.direction = l.direction;
     g.type = l.type == Light::Type::Spot ? shader::kLightSpot : shader::kLightPoint;
-    float outer = glm::radians(l.coneAngleDegrees);
     float inner = glm::radians(std::max(l.coneAngleDegrees - l.falloffDegrees, 0.0f));
-    g.cosOuter = std::cos(outer);
+    g.cosOuter = spotCosOuter(l.coneAngleDegrees);
     // A hard edge (falloff 0) still needs inner > outer in cosine for the smoothstep division.
     g.cosInner = std::max(std::cos(inner), g.cosOuter + 1e-7f);
     return g;
+}
+
+float spotCosOuter(float coneAngleDegrees) { return std::cos(glm::radians(coneAngleDegrees)); }
+
+double spotConeSteps(float coneAngleDegrees) {
+    return (1.0 - double(spotCosOuter(coneAngleDegrees))) / std::ldexp(1.0, -24);
 }
 
 shader::GpuMaterial toGpuMaterial(const Material& m) {

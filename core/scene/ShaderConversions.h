@@ -10,6 +10,14 @@
 namespace bl {
 
 shader::GpuLight toGpuLight(const Light& light);
+
+// The cosine of a spot's cone half-angle as every mode tests it: a 32-bit float.
+float spotCosOuter(float coneAngleDegrees);
+
+// How many float steps (2^-24, the spacing just below 1) lie between that cosine and 1. A point's
+// direction is tested against it as a dot product of normalized floats, itself off by a few such
+// steps, so a cone a few steps wide is lit by rounding noise or not at all.
+double spotConeSteps(float coneAngleDegrees);
 shader::GpuMaterial toGpuMaterial(const Material& material);
 
 } // namespace bl

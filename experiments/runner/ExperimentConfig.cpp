@@ -6,6 +6,7 @@
 #include "scene/SceneLoader.h"
 #include "scene/TextParsing.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <set>
@@ -45,6 +46,19 @@ std::string describe(const std::vector<std::pair<std::string, ParamValue>>& kv) 
     std::string s;
     for (const auto& [k, v] : kv) s += (s.empty() ? "" : ",") + k + "=" + formatValue(v);
     return s;
+}
+
+// An experiment's name is its output folder (results/<name>) and a scene's name is part of file
+// names in it (references/<scene>-<hash>.exr): each must be one plain path component, so that no
+// config can write outside the output directory.
+std::string folderName(const StrictTable& t, const std::string& key, const std::string& name) {
+    const bool control = std::any_of(name.begin(), name.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f; });
+    if (name.empty() || name == "." || name == ".." || name.find_first_of("/\\") != std::string::npos || control ||
+        name.size() > 200) {
+        t.fail(key, "'" + name + "' is not a plain name (one folder or file name: no '/' or '\\', not '.' or '..', "
+                    "no control characters, at most 200 characters); it names files in the output directory");
+    }
+    return name;
 }
 
 std::string resolvePath(const StrictTable& t, const std::string& name) {
@@ -89,7 +103,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     if (!exp) {
         throw Error(path + ": missing [experiment] table");
     }
-    cfg.name = exp->string("name");
+    cfg.name = folderName(*exp, "name", exp->string("name"));
     auto integers = [&](StrictTable& t, const std::string& key, std::uint64_t lo, std::uint64_t hi) {
         std::vector<std::uint64_t> out;
         for (const ParamValue& v : t.list(key)) {
@@ -150,7 +164,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     for (StrictTable& t : root.tables("scene")) {
         SceneEntry s;
         s.file = resolvePath(t, t.string("file"));
-        s.name = t.string("name", fs::path(s.file).stem().string());
+        s.name = folderName(t, "name", t.string("name", fs::path(s.file).stem().string()));
         if (!sceneNames.insert(s.name).second) t.fail("name", "duplicate scene name '" + s.name + "'");
         if (t.has("resolution")) {
             glm::ivec2 r = t.ivec2("resolution");

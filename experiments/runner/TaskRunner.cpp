@@ -2,6 +2,7 @@
 
 #include "base/Error.h"
 #include "base/Json.h"
+#include "base/Log.h"
 #include "base/RunEnvironment.h"
 #include "image/ImageIO.h"
 #include "image/Metrics.h"
@@ -80,6 +81,7 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
         return std::chrono::duration<double>(Clock::now() - start).count();
     };
     const double setupSeconds = setUp();
+    for (const std::string& w : lightsLeftOut(*mode, scene)) log::warn("task " + task.id + ": " + w);
 
     const RunEnvironment env = currentRunEnvironment();
     const std::string deviceName = modeEntry.needsGpu ? gpu->info().describe() : "";
@@ -161,6 +163,13 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
     });
     if (metrics.find("\n" + std::to_string(done) + ",") == std::string::npos) {
         checkpoint(); // a time budget ends between powers of two
+    }
+    // Frame 0's lost work: a warning in the log, and no result at all from an image that holds
+    // none of its work (the task fails with the reason in error.txt).
+    const LostWorkVerdict lost = judgeLostWork(task.mode, images);
+    for (const std::string& w : lost.warnings) log::warn("task " + task.id + ": " + w);
+    if (!lost.refusal.empty()) {
+        throw Error(lost.refusal);
     }
     const std::uint32_t frameZeroIterations = done;
     const double frameZeroWall = wall;

@@ -72,8 +72,7 @@ ImageSet AtlasMode::resolve() {
     out.iterations = mIterations;
     gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, samples);
     out.layers = std::move(estimate.layers);
-    out.nonFiniteSamples = estimate.nonFiniteSamples;
-    out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
+    addSampleLosses(out, estimate.nonFiniteSamples, estimate.droppedSamples, estimate.expectedSamples);
     out.counters.emplace_back("atlas_texels", double(g.texelCount));
     out.counters.emplace_back("atlas_charts", double(g.atlas.stats.charts));
     out.counters.emplace_back("atlas_degenerate_triangles", double(g.tables.degenerateTriangles));

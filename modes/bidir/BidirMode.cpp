@@ -135,7 +135,8 @@ struct BidirMode::Gpu {
     Bounds bounds;
     std::uint64_t nodesLast = 0;
     std::uint32_t rebuilds = 0;
-    std::uint32_t invalidVpls = 0; // over all frames: light rays that escaped or met black surfaces
+    std::uint64_t invalidVpls = 0; // over all frames: light rays that escaped or met black surfaces
+    std::uint64_t sampledVpls = 0; // over all frames: what invalidVpls is a part of
     std::vector<glm::vec3> visiblePoints; // fit = visible: this frame's G-buffer points
     double pixelGainSum = 0.0;            // sum over bundles of (sphere frame's pixel / this frame's pixel)
     std::uint64_t bundlesBuilt = 0;
@@ -211,9 +212,10 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
                  !f.environment   ? "no environment"
                  : envBundles > 0 ? std::to_string(envBundles) + " bundles per frame by Eq. 2 importance: direct "
                                                                  "environment light (indirect: not yet)"
-                                  : "environment_bundles = 0: the environment lights nothing"});
+                                  : "environment_bundles = 0: the environment lights nothing",
+                 f.environment && envBundles == 0});
     if (f.emissiveMeshes) {
-        p.push_back({"area light", false, "not lit by bidir yet: use reference or multibounce"});
+        p.push_back({"area light", false, "not lit by bidir yet: use reference or multibounce", true});
     }
     return p;
 }
@@ -438,6 +440,7 @@ void BidirMode::iterate(const IterationInfo& info) {
                      : g.vpls->sample(mInterleave->sequenceBase(mIterations, pairs), pairs, static_cast<std::uint32_t>(info.seed), info.time,
                               kVplLiftFraction * g.bounds.radius());
         for (const shader::BidirVpl& v : vpls) g.invalidVpls += v.valid ? 0u : 1u;
+        g.sampledVpls += vpls.size();
     }
     std::memcpy(g.vplBuffer.data(), vpls.data(), sizeof(shader::BidirVpl) * pairs);
 
@@ -511,13 +514,14 @@ ImageSet BidirMode::resolve() {
     out.iterations = mIterations; // one sample per pixel per frame (the mean over its K pairs)
     gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations);
     out.layers = std::move(estimate.layers);
-    out.nonFiniteSamples = estimate.nonFiniteSamples;
+    addSampleLosses(out, estimate.nonFiniteSamples, estimate.droppedSamples, estimate.expectedSamples);
     if (mInterleave->options().temporal && mIterations > 0) {
         // The last frame's share of accepted reprojected caches ([TO12s] Fig. 1 b, 4 c).
         out.layers.emplace_back("cache_hits", mInterleave->cacheHits());
     }
-    out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
     out.counters.emplace_back("invalid_vpls", double(g.invalidVpls));
+    out.lost.push_back({"invalid_vpls", g.invalidVpls, g.sampledVpls, "VPLs",
+                        "carry no light (the light ray escaped, met a black surface or the back of one)"});
     if (g.rsm) {
         out.counters.emplace_back("rsm_texel_mismatches", double(g.rsm->texelMismatches()));
     }

@@ -345,8 +345,7 @@ ImageSet MultibounceMode::resolve() {
     out.iterations = mIterations; // each added paths_per_pixel samples per pixel
     gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations * pathsPerPixel());
     out.layers = std::move(estimate.layers);
-    out.nonFiniteSamples = estimate.nonFiniteSamples;
-    out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
+    addSampleLosses(out, estimate.nonFiniteSamples, estimate.droppedSamples, estimate.expectedSamples);
     out.counters.emplace_back("bundle_nodes_last", double(g.nodesLast));
     out.counters.emplace_back("bundle_pool_capacity", double(g.pool->capacity()));
     out.counters.emplace_back("bundle_pool_max_nodes", double(g.pool->maxNodes()));

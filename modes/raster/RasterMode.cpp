@@ -58,6 +58,16 @@ std::vector<PlannedPass> RasterMode::plan(const Scene& scene) const {
     if (f.emissiveMeshes) add("visible emitters");
     if (f.environment) add("environment behind geometry");
     passes.push_back({"shade", true, shading.empty() ? "nothing lights the scene: black" : shading});
+    // Raster is direct light from point and spot lights only: emitters and the environment are
+    // seen, but light nothing.
+    if (f.emissiveMeshes) {
+        passes.push_back({"area light", false, "raster lights with point and spot lights only: use reference or "
+                                               "multibounce", true});
+    }
+    if (f.environment) {
+        passes.push_back({"environment light", false, "raster lights with point and spot lights only: use skylight, "
+                                                      "reference or multibounce", true});
+    }
     return passes;
 }
 
@@ -164,8 +174,7 @@ ImageSet RasterMode::resolve() {
     // Every iteration adds one sample to every pixel: emitted + direct, and their variance.
     gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations);
     out.layers = std::move(estimate.layers);
-    out.nonFiniteSamples = estimate.nonFiniteSamples;
-    out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
+    addSampleLosses(out, estimate.nonFiniteSamples, estimate.droppedSamples, estimate.expectedSamples);
 
     // AOVs of the last iteration's G-buffer, for inspection and later denoisers.
     auto aov = [&](std::uint32_t attachment, const char* name) {

@@ -89,8 +89,10 @@ ImageSet ReferenceMode::resolve() {
     }
     ImageSet out;
     out.iterations = mRenderer->samples();
-    out.nonFiniteSamples = mRenderer->nonFiniteSamples();
     out.layers.emplace_back("", mRenderer->mean());
+    // Every path sample lands in its pixel unless it is NaN/Inf: none is dropped.
+    addSampleLosses(out, mRenderer->nonFiniteSamples(), 0,
+                    std::uint64_t(out.iterations) * out.layers.front().second.pixelCount());
     for (int l = 0; l < kPathLayerCount; ++l) {
         out.layers.emplace_back(kPathLayerNames[l], mRenderer->layer(l));
     }

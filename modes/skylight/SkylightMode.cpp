@@ -98,7 +98,7 @@ std::vector<PlannedPass> SkylightMode::plan(const Scene& scene) const {
                      : "no environment: no light to test visibility for"});
     p.push_back({"visibility", env, env ? "one list walk per visible point per direction" : "no environment"});
     if (f.shadowCastingLights() || f.emissiveMeshes) {
-        p.push_back({"point/spot/area light", false, "not skylight's job: use reference, raster or bidir"});
+        p.push_back({"point/spot/area light", false, "not skylight's job: use reference, raster or bidir", true});
     }
     return p;
 }
@@ -284,8 +284,7 @@ ImageSet SkylightMode::resolve() {
     // One sample per pixel and direction: emitted + direct, and their variance.
     gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations);
     out.layers = std::move(estimate.layers);
-    out.nonFiniteSamples = estimate.nonFiniteSamples;
-    out.counters.emplace_back("dropped_samples", double(estimate.droppedSamples));
+    addSampleLosses(out, estimate.nonFiniteSamples, estimate.droppedSamples, estimate.expectedSamples);
     out.counters.emplace_back("bundle_fragments_last", double(g.lastStats.fragments));
     out.counters.emplace_back("bundle_rebuilds_last", double(g.lastStats.rebuilds));
     out.counters.emplace_back("bundle_tiles_last", double(g.lastStats.tiles));

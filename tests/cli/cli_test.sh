@@ -107,6 +107,84 @@ nan_vertex)
     expected="nan.obj:3: value 'nan' is not finite"
     expect_error "$bl" info "$out/nan.obj"
     ;;
+truncated_hdr)
+    # stb's reader spun forever on a cut .hdr; ours names the file and what is missing, at once.
+    head -c 200000 ../shared/data/envmap/classroom-sky.hdr >"$out/cut.hdr" || fail "no classroom-sky.hdr to cut"
+    printf '[[mesh]]\nfile = "%s"\n[environment]\nfile = "cut.hdr"\n' "$PWD/data/analytic/meshes/floor.obj" \
+        >"$out/env.toml"
+    expected="cut.hdr: Radiance HDR: truncated: the file ends at byte 200000 inside scanline"
+    expect_error timeout 60 "$bl" info "$out/env.toml"
+    expect_error timeout 60 "$bl" render "$out/env.toml" --mode raster --width 8 --height 8 --out "$out/x.exr"
+    ;;
+unrepresentable_intensity)
+    # Finite as a double, infinite as a float: every mode rendered it black.
+    sed 's/^intensity = .*/intensity = [1e39, 1, 1]/' data/analytic/point-over-plane.toml >"$out/p.toml"
+    cp -r data/analytic/meshes "$out/"
+    expected="p.toml:21: light[0].intensity: value 1e+39 is beyond the largest 32-bit float"
+    expect_error "$bl" render "$out/p.toml" --mode raster --width 8 --height 8 --out "$out/x.exr"
+    ;;
+lost_work)
+    # 3e38 W/sr (a float) 0.1 over the plane: below the light the radiance, 0.5 / pi * 3e38 / 0.01,
+    # overflows to inf and every such sample is refused. With only that spot in view the render
+    # holds no sample at all: refused, nothing written, the checkpoint already written kept.
+    cp -r data/analytic/meshes "$out/"
+    sed -e 's/^intensity = .*/intensity = [3e38, 3e38, 3e38]/' -e 's/^position  = .*/position = [0.0, 0.1, 0.0]/' \
+        -e 's/^position   = .*/position   = [0.0, 0.5, 0.0]/' -e 's/^up         = .*/up = [0.0, 0.0, 1.0]/' \
+        data/analytic/point-over-plane.toml >"$out/hot.toml"
+    sed 's/^fov        = .*/fov = 10.0/' "$out/hot.toml" >"$out/all.toml"
+    sed 's/^fov        = .*/fov = 120.0/' "$out/hot.toml" >"$out/some.toml"
+    expected="raster: every one of its 128 samples was lost"
+    expect_error "$bl" render "$out/all.toml" --mode raster --width 8 --height 8 --spp 2 --checkpoint 1 \
+        --set shadow_resolution=64 --out "$out/all.exr"
+    grep -qF "raster: 128 samples of 128 refused as NaN or infinite (non_finite_samples)" "$out/stderr.txt" ||
+        fail "no warning with the count"
+    [[ ! -e "$out/all.exr" ]] || fail "a meaningless image was written"
+    [[ -s "$out/all.1.exr" ]] || fail "the checkpoint written before the refusal is gone"
+    # Part of the view overflows: a warning with the count, exit 0, the image written.
+    "$bl" render "$out/some.toml" --mode raster --width 8 --height 8 --set shadow_resolution=64 \
+        --out "$out/some.exr" 2>"$out/some.txt" || { cat "$out/some.txt"; fail "partly lost render refused"; }
+    cat "$out/some.txt"
+    grep -qE "raster: [0-9]+ samples of 64 refused as NaN or infinite" "$out/some.txt" || fail "no lost-work warning"
+    [[ -s "$out/some.exr" ]] || fail "missing output"
+    ;;
+run_lost_work)
+    # The experiment runner applies the same verdict: the all-overflowing view fails its task (error.txt,
+    # no result), an area light raster leaves out is a warning, and the run exits non-zero.
+    cp -r data/analytic/meshes "$out/"
+    sed -e 's/^intensity = .*/intensity = [3e38, 3e38, 3e38]/' -e 's/^position  = .*/position = [0.0, 0.1, 0.0]/' \
+        -e 's/^position   = .*/position   = [0.0, 0.5, 0.0]/' -e 's/^up         = .*/up = [0.0, 0.0, 1.0]/' \
+        -e 's/^fov        = .*/fov = 10.0/' data/analytic/point-over-plane.toml >"$out/all.toml"
+    printf '[experiment]\nname = "lost"\niterations = 1\n[reference]\nenabled = false\n[[scene]]\nfile = "all.toml"\nresolution = [8, 8]\n[[scene]]\nfile = "%s"\nresolution = [8, 8]\n[[mode]]\nmode = "raster"\nsettings = { shadow_resolution = 64 }\n' \
+        "$PWD/data/cornell-box/cornell.toml" >"$out/lost.toml"
+    "$bl" run "$out/lost.toml" --out "$out/results" >"$out/stdout.txt" 2>"$out/stderr.txt" && fail "run exit code 0"
+    cat "$out/stderr.txt"
+    grep -qF "raster: every one of its 64 samples was lost" "$out/stderr.txt" || fail "no refusal in the log"
+    grep -qF "raster: the scene's area light is left out of the image" "$out/stderr.txt" || fail "no left-out warning"
+    grep -qF "every one of its 64 samples was lost" "$out"/results/tasks/*-all-*/error.txt || fail "no error.txt"
+    ls "$out"/results/tasks/*-all-*/result.csv 2>/dev/null && fail "a result row for a refused task"
+    ls "$out"/results/tasks/*-cornell-*/result.csv >/dev/null || fail "the good task has no result"
+    ;;
+lost_vpls)
+    # A spot aimed at the open sky over the plane: every VPL bidir traces escapes (invalid_vpls, which
+    # only the JSON record counted), so its indirect light rests on nothing: refused with the count.
+    cp -r data/analytic/meshes "$out/"
+    sed 's/^intensity = .*/intensity = [10, 10, 10]\ntype = "spot"\ndirection = [0, 1, 0]\ncone_angle = 30/' \
+        data/analytic/point-over-plane.toml >"$out/up.toml"
+    expected="bidir: every one of its 42 VPLs was lost"
+    expect_error "$bl" render "$out/up.toml" --mode bidir --width 16 --height 16 --iterations 2 --out "$out/up.exr"
+    grep -qF "bidir: 42 VPLs of 42 carry no light" "$out/stderr.txt" || fail "no warning with the count"
+    [[ ! -e "$out/up.exr" ]] || fail "a meaningless image was written"
+    ;;
+lights_left_out)
+    # An area-lit box in raster: the area light lights nothing there, said once at render time.
+    "$bl" render data/cornell-box/cornell.toml --mode raster --width 8 --height 8 --set shadow_resolution=64 \
+        --out "$out/r.exr" 2>"$out/stderr.txt" || fail "render failed"
+    [[ $(grep -c "raster: the scene's area light is left out of the image" "$out/stderr.txt") -eq 1 ]] ||
+        { cat "$out/stderr.txt"; fail "no single warning for the area light"; }
+    "$bl" render data/cornell-box/cornell-point.toml --mode raster --width 8 --height 8 --set shadow_resolution=64 \
+        --out "$out/p.exr" 2>"$out/point.txt" || fail "render failed"
+    grep -q "left out" "$out/point.txt" && fail "a warning for a scene the mode renders whole"
+    ;;
 validation_clean)
     "$bl" render data/external/sponza-point.toml --mode raster --width 96 --height 64 --validation \
         --set shadow_resolution=128 --out "$out/s.exr" 2>"$out/stderr.txt" || { cat "$out/stderr.txt"; fail "render failed"; }

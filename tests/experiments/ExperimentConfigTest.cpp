@@ -70,3 +70,25 @@ TEST(ExperimentConfig, EditingAMeshInvalidatesFinishedTasks) {
     writeTempFile("tri.obj", "v 0 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\n"); // the scene file is unchanged
     EXPECT_NE(loadExperimentConfig(config).tasks.at(0).hash, before);
 }
+
+// Names become paths under the output directory (results/<experiment>, references/<scene>-…):
+// none may leave it.
+TEST(ExperimentConfig, NamesCannotLeaveTheOutputDirectory) {
+    const std::string scene = sourcePath("data/cornell-box/cornell.toml");
+    auto config = [&](const std::string& experiment, const std::string& sceneName) {
+        return writeTempFile("names.toml", "[experiment]\nname = \"" + experiment + "\"\n[[scene]]\nfile = \"" + scene +
+                                               "\"\nname = \"" + sceneName + "\"\n[[mode]]\nmode = \"raster\"\n");
+    };
+    for (const std::string bad : {"../x", "/tmp/x", "a/b", "..", ".", "", "a\\\\b"}) {
+        const std::string p = config(bad, "ok");
+        const std::string shown = bad == "a\\\\b" ? "a\\b" : bad;
+        EXPECT_NE(errorFor(p).find(p + ":2: experiment.name: '" + shown + "' is not a plain name"), std::string::npos)
+            << errorFor(p);
+    }
+    for (const std::string bad : {"x/../../../../y", "..", "/etc/passwd", "a/b"}) {
+        const std::string p = config("ok", bad);
+        EXPECT_NE(errorFor(p).find(p + ":5: scene[0].name: '" + bad + "' is not a plain name"), std::string::npos)
+            << errorFor(p);
+    }
+    EXPECT_EQ(errorFor(config("bidir-equal-time.v2", "cornell_box")), "");
+}

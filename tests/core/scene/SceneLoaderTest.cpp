@@ -253,6 +253,54 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"syntax", "x = [1, 2\n", 0, "TOML syntax error"}),
     [](const ::testing::TestParamInfo<BadScene>& param) { return std::string(param.param.name); });
 
+// Radiometric values a 32-bit float cannot hold: every mode rendered them black without a word.
+INSTANTIATE_TEST_SUITE_P(
+    Unrepresentable, SceneLoaderErrors,
+    ::testing::Values(
+        BadScene{"huge_intensity", "[[light]]\nposition = [0, 1, 0]\nintensity = [1e39, 1, 1]\n", 10,
+                 "intensity: value 1e+39 is beyond the largest 32-bit float"},
+        BadScene{"tiny_intensity", "[[light]]\nposition = [0, 1, 0]\nintensity = [1, 1e-39, 1]\n", 10,
+                 "intensity: value 1e-39 is below the smallest normal 32-bit float"},
+        BadScene{"huge_emission", "[[mesh]]\nfile = \"quad.obj\"\nemission = [1, 1, 5e38]\n", 10,
+                 "emission: value 5e+38 is beyond the largest 32-bit float"},
+        BadScene{"huge_albedo", "[[material]]\nname = \"hot\"\nalbedo = [1e39, 0.5, 0.5]\n", 10,
+                 "albedo: value 1e+39 is beyond the largest 32-bit float"},
+        BadScene{"huge_env_radiance", "[environment]\nradiance = [1e40, 1, 1]\n", 9,
+                 "radiance: value 1e+40 is beyond the largest 32-bit float"},
+        BadScene{"huge_env_scale", "[environment]\nradiance = [1, 1, 1]\nscale = 1e39\n", 10,
+                 "scale: value 1e+39 is beyond the largest 32-bit float"},
+        BadScene{"env_radiance_times_scale", "[environment]\nradiance = [1e20, 1, 1]\nscale = 1e20\n", 10,
+                 "the brightest environment radiance times scale: 1e+20 x 1e+20 = 1e+40 is beyond"},
+        // cos(0.03 deg) is 2 float steps below 1: every mode rendered its lit area 32 % short.
+        BadScene{"spot_too_narrow", "[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\nintensity = [1, 1, 1]\n"
+                                    "direction = [0, -1, 0]\ncone_angle = 0.03\n",
+                 13, "cone_angle 0.03 degrees: its cosine is 2 float steps (2^-24) below 1, so 32-bit floats render "
+                     "its lit area up to 50 % off"},
+        BadScene{"spot_black", "[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\nintensity = [1, 1, 1]\n"
+                               "direction = [0, -1, 0]\ncone_angle = 0.01\n",
+                 13, "up to 100 % off (black)"}),
+    [](const ::testing::TestParamInfo<BadScene>& param) { return std::string(param.param.name); });
+
+TEST(SceneLoader, EnvironmentMapTimesScaleMustBeAFloat) {
+    const std::string hdr = std::filesystem::absolute(sharedPath("data/envmap/classroom-sky.hdr")).string();
+    const std::string ok = sceneWith("[environment]\nfile = \"" + hdr + "\"\nscale = 1e30\n", "env_ok.toml");
+    EXPECT_EQ(loadError(ok), "");
+    const std::string bad = sceneWith("[environment]\nfile = \"" + hdr + "\"\nscale = 3e38\n", "env_bad.toml");
+    EXPECT_NE(loadError(bad).find(bad + ":10: environment.scale: the brightest environment radiance times scale"),
+              std::string::npos)
+        << loadError(bad);
+}
+
+TEST(SceneLoader, NarrowButResolvableSpotConesLoad) {
+    for (const char* cone : {"0.07", "0.2", "1"}) { // 0.07: 12.5 steps, a warning only
+        const std::string p = sceneWith(std::string("[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\n"
+                                                    "intensity = [1, 1, 1]\ndirection = [0, -1, 0]\ncone_angle = ") +
+                                            cone + "\n",
+                                        "cone.toml");
+        EXPECT_EQ(loadError(p), "") << cone;
+    }
+}
+
 TEST(SceneLoader, MissingSceneFile) {
     EXPECT_NE(loadError("/no/such/scene.toml").find("/no/such/scene.toml: file not found"), std::string::npos);
 }
