@@ -301,6 +301,7 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
             break;
         }
         log::debug("atlas: " + std::to_string(uncovered.size()) + " triangles own no texel; giving them charts of their own");
+        st.isolatedTriangles += uncovered.size();
         std::sort(uncovered.begin(), uncovered.end(), std::greater<>());
         std::vector<FlatChart> singles;
         for (auto [c, i] : uncovered) {

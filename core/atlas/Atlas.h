@@ -37,6 +37,10 @@ struct AtlasStats {
     std::size_t flippedTriangles = 0;
     std::size_t overlappingTexels = 0; // touched by two charts
     std::size_t uncoveredTriangles = 0; // owning no texel
+    // Triangles that owned no texel of their chart (slivers or sub-texel triangles crowded by their
+    // neighbours) and were given charts of their own: each costs a chart, its padding and often
+    // pages beyond the first, and its texels see only its own few hits (noisy, not biased).
+    std::size_t isolatedTriangles = 0;
     std::size_t triangles = 0;
     std::size_t nonManifoldFaces = 0;
     std::size_t degenerateFaces = 0;

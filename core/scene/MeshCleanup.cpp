@@ -40,7 +40,11 @@ PositionKey sortedPositions(const Mesh& m, const glm::uvec3& t) {
     return {p[0].x, p[0].y, p[0].z, p[1].x, p[1].y, p[1].z, p[2].x, p[2].y, p[2].z};
 }
 
-void generateNormals(Mesh& mesh, float creaseDegrees) {
+// Flat: each corner takes its face's normal. Smooth: the area-weighted sum of the normals of the
+// faces around the corner's position within the crease angle. Vertices are split where their
+// corners' normals differ (shared where equal, so coplanar neighbours keep sharing them).
+void generateNormals(Mesh& mesh, NormalSource source, float creaseDegrees) {
+    const bool flat = source != NormalSource::Smooth;
     const float cosCrease = std::cos(glm::radians(creaseDegrees));
     const std::size_t nt = mesh.triangles.size();
     std::vector<glm::vec3> faceNormal(nt), weighted(nt);
@@ -50,7 +54,7 @@ void generateNormals(Mesh& mesh, float creaseDegrees) {
     }
     // Vertices may be split by the OBJ (v/vt/vn) keys; smooth over equal positions instead.
     std::map<std::array<float, 3>, std::vector<std::uint32_t>> facesAt;
-    for (std::size_t i = 0; i < nt; ++i) {
+    for (std::size_t i = 0; i < nt && !flat; ++i) {
         for (int k = 0; k < 3; ++k) {
             const glm::vec3& p = mesh.positions[mesh.triangles[i][k]];
             facesAt[{p.x, p.y, p.z}].push_back(static_cast<std::uint32_t>(i));
@@ -63,13 +67,16 @@ void generateNormals(Mesh& mesh, float creaseDegrees) {
         for (int k = 0; k < 3; ++k) {
             std::uint32_t v = mesh.triangles[i][k];
             const glm::vec3& p = mesh.positions[v];
-            glm::vec3 n(0.0f);
-            for (std::uint32_t j : facesAt[{p.x, p.y, p.z}]) {
-                if (glm::dot(faceNormal[j], faceNormal[i]) >= cosCrease) {
-                    n += weighted[j];
+            glm::vec3 n = faceNormal[i];
+            if (!flat) {
+                n = glm::vec3(0.0f);
+                for (std::uint32_t j : facesAt[{p.x, p.y, p.z}]) {
+                    if (glm::dot(faceNormal[j], faceNormal[i]) >= cosCrease) {
+                        n += weighted[j];
+                    }
                 }
+                n = glm::normalize(n);
             }
-            n = glm::normalize(n);
             auto [it, inserted] = vertexOf.try_emplace({v, n.x, n.y, n.z}, 0u);
             if (inserted) {
                 it->second = static_cast<std::uint32_t>(out.positions.size());
@@ -90,7 +97,7 @@ void generateNormals(Mesh& mesh, float creaseDegrees) {
 
 } // namespace
 
-CleanupStats cleanupMesh(Mesh& mesh, float creaseDegrees) {
+CleanupStats cleanupMesh(Mesh& mesh, const NormalOptions& normals) {
     CleanupStats stats;
     std::set<PositionKey> seen;
     std::vector<glm::uvec3> kept;
@@ -106,8 +113,9 @@ CleanupStats cleanupMesh(Mesh& mesh, float creaseDegrees) {
     }
     mesh.triangles = std::move(kept);
 
-    if (mesh.normals.empty()) {
-        generateNormals(mesh, creaseDegrees);
+    if (mesh.normals.empty() || normals.source != NormalSource::File) {
+        mesh.normals.clear();
+        generateNormals(mesh, normals.source, normals.creaseDegrees);
         stats.generatedNormals = true;
     } else {
         // A zero or broken normal in the file would become NaN in shading: use the face normal.

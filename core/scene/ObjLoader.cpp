@@ -146,7 +146,7 @@ MeshFile loadObj(const std::string& path) {
         if (b.mesh.triangles.empty()) {
             continue;
         }
-        // A mesh with only some normals given gets all of them generated (cleanup does it).
+        // A mesh with only some normals given gets face normals for all (cleanup does it).
         bool complete = b.anyNormal;
         for (const glm::vec3& n : b.mesh.normals) {
             complete = complete && glm::dot(n, n) > 0.0f;

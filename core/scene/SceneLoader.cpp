@@ -250,7 +250,7 @@ using MaterialRemap = std::map<std::string, std::uint32_t>;
 void addMeshFile(Scene& scene, MeshFile file, const std::string& context,
                  const std::optional<std::uint32_t>& materialOverride, const MaterialRemap& remap,
                  const std::optional<glm::vec3>& emissionOverride, const glm::mat4& transform,
-                 const RigidAnimation& animation) {
+                 const RigidAnimation& animation, const NormalOptions& normals) {
     const int textureBase = static_cast<int>(scene.textures.size());
     // The scene material of each file material: remapped ones are not added, so that no unused
     // material counts in the scene's features.
@@ -274,7 +274,7 @@ void addMeshFile(Scene& scene, MeshFile file, const std::string& context,
     }
     for (Mesh& mesh : file.meshes) {
         bakeTransform(mesh, transform);
-        CleanupStats stats = cleanupMesh(mesh);
+        CleanupStats stats = cleanupMesh(mesh, normals);
         scene.loadStats.degenerateTriangles += stats.degenerateTriangles;
         scene.loadStats.duplicateTriangles += stats.duplicateTriangles;
         scene.loadStats.repairedNormals += stats.repairedNormals;
@@ -344,6 +344,27 @@ MaterialRemap checkMaterialRemap(const std::vector<MaterialRemapEntry>& entries,
     return remap;
 }
 
+// A [[mesh]]'s `normals` ("file", "flat" or "smooth") and, for "smooth", `crease_angle` (degrees).
+NormalOptions readNormals(StrictTable& t) {
+    NormalOptions n;
+    const std::string source = t.string("normals", "file");
+    if (source != "file" && source != "flat" && source != "smooth") {
+        t.fail("normals", "expected \"file\", \"flat\" or \"smooth\", got \"" + source + "\"");
+    }
+    n.source = source == "flat" ? NormalSource::Flat : source == "smooth" ? NormalSource::Smooth : NormalSource::File;
+    if (t.has("crease_angle")) {
+        if (n.source != NormalSource::Smooth) {
+            t.fail("crease_angle", "only with normals = \"smooth\" (normals is \"" + source + "\")");
+        }
+        const double crease = t.number("crease_angle");
+        if (!(crease > 0.0 && crease <= 180.0)) {
+            t.fail("crease_angle", "value " + formatNumber(crease) + " outside (0, 180] degrees");
+        }
+        n.creaseDegrees = static_cast<float>(crease);
+    }
+    return n;
+}
+
 void readMesh(StrictTable& t, Scene& scene, const std::map<std::string, std::uint32_t>& materialOf) {
     std::string path = resolveFile(t, "file");
     std::optional<std::uint32_t> material;
@@ -365,6 +386,7 @@ void readMesh(StrictTable& t, Scene& scene, const std::map<std::string, std::uin
         requireNonNegative(t, "emission", *emission);
     }
     glm::mat4 transform = readStaticTransform(t);
+    const NormalOptions normals = readNormals(t);
     RigidAnimation animation;
     std::vector<StrictTable> keys = t.tables("keyframe");
     std::vector<double> times = readKeyTimes(keys);
@@ -384,7 +406,7 @@ void readMesh(StrictTable& t, Scene& scene, const std::map<std::string, std::uin
         throw Error(std::string(e.what()) + "\n  (loaded from " + t.file() + ":" + std::to_string(t.line("file")) + ")");
     }
     const MaterialRemap remap = checkMaterialRemap(remapEntries, file, path);
-    addMeshFile(scene, std::move(file), t.file(), material, remap, emission, transform, animation);
+    addMeshFile(scene, std::move(file), t.file(), material, remap, emission, transform, animation, normals);
 }
 
 Light readLight(StrictTable& t) {
@@ -498,7 +520,7 @@ Scene loadTomlScene(const std::string& path) {
 Scene loadBareMesh(const std::string& path) {
     Scene scene;
     scene.path = path;
-    addMeshFile(scene, loadMeshFile(path), path, std::nullopt, {}, std::nullopt, glm::mat4(1.0f), {});
+    addMeshFile(scene, loadMeshFile(path), path, std::nullopt, {}, std::nullopt, glm::mat4(1.0f), {}, {});
     requireTriangles(scene);
     Bounds b = scene.bounds();
     scene.camera = fitCamera(b, {kDefaultResolution, kDefaultResolution});

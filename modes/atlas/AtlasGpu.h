@@ -12,6 +12,7 @@
 #include "modes/atlas/AtlasMode.h"
 #include "modes/atlas/AtlasTables.h"
 #include "modes/atlas/AtlasViewPass.h"
+#include "modes/atlas/DirectionOrder.h"
 #include "sampling/EnvironmentLight.h"
 #include "vk/Descriptors.h"
 
@@ -33,6 +34,7 @@ struct AtlasMode::Gpu {
     std::unique_ptr<atlasmode::AtlasViewPass> view;
     std::unique_ptr<BundlePool> pool;
     std::unique_ptr<DirectionSampler> directions;
+    std::unique_ptr<DirectionOrder> order; // the shuffled order (glossy transfer), with `directions`
     EnvironmentLight environment;
     std::unique_ptr<EnvironmentLight> importance; // luminance-sampled, for directions=importance
     std::unique_ptr<gpu::ShadowCubePass> shadows; // only with point or spot lights
@@ -52,7 +54,6 @@ struct AtlasMode::Gpu {
     // Glossy materials (interleaved transfer only): the glossy transfer atlas rides in `received`;
     // the final gather's per-pixel sums and the view sample's point-light highlight per pixel.
     bool glossy = false, glossyTransfer = false, shuffleDirections = false;
-    std::uint32_t directionSeed = 0;
     vk::Buffer materials, gathered, highlight;
     vk::PipelineLayout exchangeLayout, updateLayout, shadeLayout, directLayout, gatherLayout, highlightLayout;
     vk::Pipeline exchange, update, shade, direct, gather, highlightPipeline;

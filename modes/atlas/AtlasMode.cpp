@@ -47,14 +47,6 @@ constexpr std::uint64_t kInitialNodesPerPixel = 4;
 // numbers (DirectionSampler) by distinct hash keys.
 constexpr std::uint32_t kGridKeyX = 0x68e31da4u;
 constexpr std::uint32_t kGridKeyY = 0xb5297a4du;
-// Glossy transfer with Halton directions: the sequence is taken in a shuffled order within blocks
-// of kShuffleBlock indices (key kShuffleKey). The transfer pairs each direction with the next, and
-// consecutive Halton points (bases 5 and 7) sit at nearly fixed offsets from each other, which
-// biased the lobes' light locally (the glossy Cornell box's left wall top +30%, measured); after
-// the shuffle the next direction is any point of the block, and every full block is the Halton
-// prefix again.
-constexpr std::uint32_t kShuffleBlock = 64;
-constexpr std::uint32_t kShuffleKey = 0x2545f491u;
 // Device bytes per texel: texel table (32), received and glossy transfer (2 x 32), sums (2 x 32),
 // direct (2 x 16), settled (2 x 16), chart (4), touched list (2 x 4), and either the sender
 // records (interleaved, 2 x 48) or the sender (bounce, 2 x 16); split channels (delay_indirect)
@@ -133,6 +125,13 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     log::info("atlas: " + std::to_string(g->atlas.maps.width) + "x" + std::to_string(g->atlas.maps.height) + " x " +
               std::to_string(g->atlas.maps.pages) + " page(s), " + std::to_string(g->atlas.stats.charts) +
               " charts, utilization " + std::to_string(g->atlas.stats.utilization));
+    if (g->atlas.stats.isolatedTriangles > 0) {
+        log::warn("atlas: " + std::to_string(g->atlas.stats.isolatedTriangles) +
+                  " triangles are too thin for a texel of their own at atlas_resolution " +
+                  std::to_string(atlasOptions.size) + " (slivers, or triangles crowded within a texel) and got " +
+                  "charts of their own: " + std::to_string(g->atlas.maps.pages) +
+                  " page(s); their texels see few hits each (noisy, not biased). Raise atlas_resolution or remesh");
+    }
     if (g->tables.degenerateTriangles > 0) {
         log::warn("atlas: " + std::to_string(g->tables.degenerateTriangles) +
                   " triangles have no atlas area; their hits exchange nothing");
@@ -350,11 +349,13 @@ void AtlasMode::iterate(const IterationInfo& info) {
     }
     if (!g.directions) {
         // The seed decorrelates runs; directions are reproducible from (settings, seed).
-        g.directionSeed = static_cast<std::uint32_t>(info.seed);
         g.directions = std::make_unique<DirectionSampler>(
             sequenceOf(mSettings.getString(kDirections)), static_cast<std::uint32_t>(info.seed),
             static_cast<std::uint32_t>(mSettings.getInt(kStrata)), g.importance.get(),
             static_cast<float>(mSettings.getDouble(kImportanceOffset)));
+        g.order = std::make_unique<DirectionOrder>(sequenceOf(mSettings.getString(kDirections)),
+                                                   static_cast<std::uint32_t>(mSettings.getInt(kStrata)),
+                                                   static_cast<std::uint32_t>(info.seed));
     }
     mTime = info.time;
     const auto maxSegments = static_cast<std::uint32_t>(mSettings.getInt(kMaxSegments));
@@ -517,17 +518,7 @@ AtlasMode::TexelRadiance AtlasMode::readTexels() const {
 
 std::uint32_t AtlasMode::directionIndex(std::uint32_t i) const {
     const Gpu& g = *mGpu;
-    if (!g.shuffleDirections || sequenceOf(mSettings.getString(kDirections)) != DirectionSequence::Halton) {
-        return i;
-    }
-    const std::uint32_t block = i / kShuffleBlock;
-    std::array<std::uint32_t, kShuffleBlock> order;
-    for (std::uint32_t k = 0; k < kShuffleBlock; ++k) order[k] = k;
-    for (std::uint32_t k = kShuffleBlock - 1; k > 0; --k) { // Fisher-Yates, keyed by seed and block
-        const float u = shader::blHashRandom(g.directionSeed ^ kShuffleKey, block * kShuffleBlock + k);
-        std::swap(order[k], order[std::min(k, std::uint32_t(u * float(k + 1)))]);
-    }
-    return block * kShuffleBlock + order[i % kShuffleBlock];
+    return g.shuffleDirections ? (*g.order)(i) : i;
 }
 
 bool AtlasMode::bounce() const { return mSettings.getString(kTransfer) == "bounce"; }

@@ -74,7 +74,8 @@
 // Lambert estimator with rho / pi replaced by the lobe); the update adds it to the sender of
 // direction i + 1 only. Averaged over directions this is an unbiased one-sample estimate of the
 // lobe's outgoing radiance toward omega_{i+1} whenever omega_i is distributed independently of
-// omega_{i+1} (hence Halton directions are taken in a shuffled order within blocks: directionIndex),
+// omega_{i+1} (hence every direction sequence is taken in a shuffled order within blocks:
+// DirectionOrder.h),
 // and it includes what reached the texel glossily at i - 1: paths through any number of glossy
 // surfaces. Point/spot light reaches the glossy transfer atlas by the direct pass's
 // sample points (their lobes toward omega_{i+1}). Final glossy gather toward the eye: per
@@ -178,8 +179,8 @@ private:
     shader::AtlasDirectPush directPush() const;
     void recordGather(VkCommandBuffer cmd, double weight);
     void recordHighlight(VkCommandBuffer cmd);
-    // The sampler index of the i-th direction processed (shuffled in blocks for the glossy transfer
-    // with Halton directions, else i).
+    // The sampler index of the i-th direction processed (shuffled in blocks for the glossy
+    // transfer, DirectionOrder.h; else i).
     std::uint32_t directionIndex(std::uint32_t i) const;
     bool bounce() const; // transfer = bounce
     // 1, or 0 where max_segments = 1 leaves out all reflected light (the direct atlas included).

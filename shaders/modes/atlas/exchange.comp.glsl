@@ -4,8 +4,9 @@
 // the estimator is derived in modes/atlas/AtlasMode.h). One invocation per bundle pixel walks its
 // depth-sorted list: consecutive hits y (shallower) and x (deeper) see each other along omega, so
 // x's side facing -omega receives the sender radiance of y's side facing +omega and y's side facing
-// +omega receives x's side facing -omega. The first hit's -omega side and the last hit's +omega
-// side see the environment. Each receiver texel T adds
+// +omega receives x's side facing -omega (hits within the depth epsilon of each other are one
+// group, see main). The first hit's -omega side and the last hit's +omega side see the
+// environment. Each receiver texel T adds
 //   albedo_T * L_sender * a_pix / (pi p_r) / A_T
 // (direction.weight = a_pix / (pi p_r), 1 / A_T per texel): the flux of the bundle pixel's ray, so
 // that summed over the pixels hitting T and averaged over directions it is T's reflected radiance.
@@ -119,29 +120,44 @@ void main() {
     if (head == kBundleNil) {
         return;
     }
-    // First hit: its -omega side looks out of the scene.
-    uint y = head;
-    uint yNext = nodes.nodes[y].next;
-    uint yTexel = texelOf(hits, y);
+    // Coincident fragments (depths within the frame's depth epsilon: a face and its duplicate, a
+    // reversed copy, overlapping coplanar triangles, a box's bottom on the floor) are one boundary,
+    // not a gap: every member's side facing -omega receives from the group before (the
+    // environment at the list's start) and its side facing +omega from the group after; only the
+    // first member sends back and the last sends on. Paired one by one instead, the members
+    // exchanged with each other across zero distance, so which of them saw the room depended on
+    // the sort's tie order (a reversed duplicate floor: image -3.3%, indirect -7%). Light still
+    // never crosses the group: its inner sides receive but do not send. A group of one is the
+    // plain pairing of consecutive hits.
     vec3 omega = frame.direction;
-    receive(hits, y, yTexel, blAtlasSideFacingBackward(yNext), dir.environmentBackward, vec3(0.0), -omega, dir);
     // Before indirect light is enabled (split) surfaces send their emission only.
     float reflects = dir.split == 0u || dir.indirect != 0u ? 1.0 : 0.0;
-    for (uint x = yNext & kBundleIndexMask; x != kBundleNil;) {
-        uint xNext = nodes.nodes[x].next;
-        uint xTexel = texelOf(hits, x);
-        uint ySide = blAtlasSideFacingForward(yNext);
-        uint xSide = blAtlasSideFacingBackward(xNext);
-        vec3 yEmitted, yReflected, xEmitted, xReflected;
-        blAtlasSenderParts(dir, kAtlasSides * yTexel + ySide, yEmitted, yReflected);
-        blAtlasSenderParts(dir, kAtlasSides * xTexel + xSide, xEmitted, xReflected);
-        receive(hits, x, xTexel, xSide, yEmitted, reflects * yReflected, -omega, dir);
-        receive(hits, y, yTexel, ySide, xEmitted, reflects * xReflected, omega, dir);
-        y = x;
-        yNext = xNext;
-        yTexel = xTexel;
-        x = xNext & kBundleIndexMask;
+    vec3 backEmitted = dir.environmentBackward, backReflected = vec3(0.0); // what arrives along +omega
+    for (uint first = head; first != kBundleNil;) {
+        uint last = first;
+        uint after = nodes.nodes[first].next & kBundleIndexMask;
+        while (after != kBundleNil && nodes.nodes[after].depth - nodes.nodes[first].depth <= frame.depthEpsilon) {
+            last = after;
+            after = nodes.nodes[after].next & kBundleIndexMask;
+        }
+        vec3 onEmitted = dir.environmentForward, onReflected = vec3(0.0); // what arrives along -omega
+        if (after != kBundleNil) {
+            uint afterSide = blAtlasSideFacingBackward(nodes.nodes[after].next);
+            blAtlasSenderParts(dir, kAtlasSides * texelOf(hits, after) + afterSide, onEmitted, onReflected);
+            onReflected *= reflects;
+        }
+        for (uint n = first;; n = nodes.nodes[n].next & kBundleIndexMask) {
+            uint nNext = nodes.nodes[n].next;
+            uint nTexel = texelOf(hits, n);
+            receive(hits, n, nTexel, blAtlasSideFacingBackward(nNext), backEmitted, backReflected, -omega, dir);
+            receive(hits, n, nTexel, blAtlasSideFacingForward(nNext), onEmitted, onReflected, omega, dir);
+            if (n == last) {
+                break;
+            }
+        }
+        uint lastSide = blAtlasSideFacingForward(nodes.nodes[last].next);
+        blAtlasSenderParts(dir, kAtlasSides * texelOf(hits, last) + lastSide, backEmitted, backReflected);
+        backReflected *= reflects;
+        first = after;
     }
-    // Last hit: its +omega side looks out of the scene.
-    receive(hits, y, yTexel, blAtlasSideFacingForward(yNext), dir.environmentForward, vec3(0.0), omega, dir);
 }

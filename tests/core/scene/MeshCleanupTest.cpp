@@ -20,11 +20,12 @@ TEST(MeshCleanup, DropsDegenerateAndDuplicateTriangles) {
 }
 
 TEST(MeshCleanup, GeneratedNormalsKeepCreasesAndSmoothCurves) {
+    const NormalOptions smooth{NormalSource::Smooth, 45.0f};
     // Two faces of a box meeting at 90 degrees: flat normals on each side of the crease.
     Mesh box;
     box.positions = {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}, {0, 1, 0}, {0, 1, 1}};
     box.triangles = {{0, 3, 2}, {0, 2, 1}, {0, 4, 5}, {0, 5, 3}};
-    cleanupMesh(box);
+    cleanupMesh(box, smooth);
     for (std::size_t t = 0; t < box.triangles.size(); ++t) {
         glm::vec3 n = box.normals[box.triangles[t].x];
         for (int k = 1; k < 3; ++k) {
@@ -36,9 +37,20 @@ TEST(MeshCleanup, GeneratedNormalsKeepCreasesAndSmoothCurves) {
     float s = std::sin(glm::radians(10.0f)), c = std::cos(glm::radians(10.0f));
     fold.positions = {{0, 0, 0}, {0, 0, 1}, {-1, 0, 0}, {c, s, 0}};
     fold.triangles = {{0, 1, 2}, {0, 3, 1}};
-    cleanupMesh(fold);
+    Mesh flatFold = fold;
+    cleanupMesh(fold, smooth);
+    // The faces' normals are 10 degrees apart and the faces equal in area: 5 degrees from each.
     std::size_t shared = fold.triangles[0].x;
-    EXPECT_NEAR(glm::dot(fold.normals[shared], glm::vec3(0, -1, 0)), 1.0f, 0.02f);
+    EXPECT_NEAR(glm::dot(fold.normals[shared], glm::vec3(0, -1, 0)), std::cos(glm::radians(5.0f)), 1e-4f);
+    EXPECT_EQ(fold.normals[fold.triangles[0].x], fold.normals[fold.triangles[1].x]); // one vertex, shared
+    // By default (no normals in the file) each face keeps its own normal at the shared edge.
+    CleanupStats stats = cleanupMesh(flatFold);
+    EXPECT_TRUE(stats.generatedNormals);
+    for (const glm::uvec3& t : flatFold.triangles) {
+        const glm::vec3 face = glm::normalize(glm::cross(flatFold.positions[t.y] - flatFold.positions[t.x],
+                                                         flatFold.positions[t.z] - flatFold.positions[t.x]));
+        for (int k = 0; k < 3; ++k) EXPECT_LT(glm::distance(flatFold.normals[t[k]], face), 1e-6f);
+    }
 }
 
 TEST(MeshCleanup, RepairsBrokenNormals) {
