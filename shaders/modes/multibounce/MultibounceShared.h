@@ -105,6 +105,71 @@ BL_CONST uint kMultibouncePointsGroupSize = 64u;
 // near 1 (white furnace) still ends, at the cost of 5% more variance per surviving segment.
 BL_CONST float kMultibounceMaxSurvival = 0.95f;
 
+// Bundles a path excludes when it draws the next one: those of its last 8 segments (fewer when
+// K <= 8: all but one). Drawing without replacement is exact for the whole path; beyond 8
+// segments Russian roulette has ended nearly every path, and a bundle reused after 8 segments is
+// no longer the direction back to the previous vertex.
+BL_CONST uint kMultibounceRecentBundles = 8u;
+
+// The bundles of a path's last segments, oldest first: `count` of at most `size` =
+// min(kMultibounceRecentBundles, K - 1), so at least one bundle is always left to draw.
+struct MultibounceBundleWindow {
+    uint bundles[kMultibounceRecentBundles];
+    uint count;
+    uint size;
+};
+
+BL_INLINE MultibounceBundleWindow blMultibounceBundleWindow(uint slots) {
+    MultibounceBundleWindow w;
+    for (uint i = 0u; i < kMultibounceRecentBundles; ++i) {
+        w.bundles[i] = 0u;
+    }
+    w.count = 0u;
+    w.size = min(kMultibounceRecentBundles, slots > 0u ? slots - 1u : 0u);
+    return w;
+}
+
+// The bundle of the next segment from u in [0, 1): uniform over the `slots` bundles not in the
+// window. With replacement a path went back along the bundle it arrived by with probability
+// 1 / K: its previous vertex again, a point mass the weight 1 / p_r treats as a continuous density
+// (issue 19, B2). Without replacement the bundles of a path are distinct, so for independent
+// uniform directions each d is uniform and independent of the path so far: p_r(d) = 1 / (2 pi)
+// on x's hemisphere holds as before.
+BL_INLINE uint blMultibouncePickBundle(MultibounceBundleWindow w, float u, uint slots) {
+    uint excluded[kMultibounceRecentBundles];
+    for (uint i = 0u; i < w.count; ++i) { // ascending, by insertion (count <= 8)
+        uint v = w.bundles[i];
+        uint j = i;
+        for (; j > 0u && excluded[j - 1u] > v; --j) {
+            excluded[j] = excluded[j - 1u];
+        }
+        excluded[j] = v;
+    }
+    uint available = slots - w.count;
+    uint k = min(uint(u * float(available)), available - 1u);
+    for (uint i = 0u; i < w.count; ++i) { // the k-th unused index: step over the used ones below it
+        if (k >= excluded[i]) {
+            ++k;
+        }
+    }
+    return k;
+}
+
+// Bundle k was drawn: it joins the window, the oldest leaving a full one.
+BL_INLINE void blMultibounceRemember(BL_INOUT(MultibounceBundleWindow) w, uint k) {
+    if (w.size == 0u) {
+        return;
+    }
+    if (w.count == w.size) {
+        for (uint i = 1u; i < w.size; ++i) {
+            w.bundles[i - 1u] = w.bundles[i];
+        }
+        --w.count;
+    }
+    w.bundles[w.count] = k;
+    ++w.count;
+}
+
 // Every layer of the reference: emitted, direct, indirect1, indirect2, rest.
 BL_CONST uint kMultibounceAccumLayers = kAllPathLayers;
 
