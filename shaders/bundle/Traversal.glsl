@@ -110,13 +110,15 @@ float blBundleSurfaceDepth(BundleFrame frame, ivec2 pixel, vec3 x, float depth, 
 }
 
 // How far past x a fragment's crossing must lie to count, the same for every fragment whatever its
-// winding: frame.depthEpsilon (float rounding at the scene's scale) plus what the interpolated-
-// depth build can move a plane at the centre ray (vertices snapped to 1/kBundleSubpixelGrid px:
-// that much times the plane's slope). Nothing real is skipped beyond that: closer is a contact.
+// winding: frame.depthEpsilon (float rounding of coordinates at the scene's scale and offset) over
+// |n . omega| (a crossing divides a coordinate's rounding by it: x's own plane far from the origin
+// otherwise shadows itself), plus what the interpolated-depth build can move a plane at the
+// centre ray (vertices snapped to 1/kBundleSubpixelGrid px: that much times the plane's slope).
+// Nothing real is skipped beyond that: closer is a contact.
 float blBundleSurfaceEpsilon(BundleFrame frame, float cosine) {
     float c = max(abs(cosine), 1.0 / kBundleMaxOwnSurfaceTangent);
     float tangent = min(sqrt(max(0.0, 1.0 - c * c)) / c, kBundleMaxOwnSurfaceTangent);
-    return frame.depthEpsilon + frame.pixelSize * tangent / kBundleSubpixelGrid;
+    return frame.depthEpsilon / c + frame.pixelSize * tangent / kBundleSubpixelGrid;
 }
 
 // The next surface along dir * omega (dir = +1 or -1) from x (pixel and depth from blBundlePixel,
