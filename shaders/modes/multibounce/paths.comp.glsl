@@ -2,14 +2,14 @@
 #extension GL_GOOGLE_include_directive : require
 // Mode multibounce, one camera path per pixel through K resident omnidirectional bundles ([TO12]
 // section 7, EQUATIONS.md section 3). From the G-buffer's visible point, each bounce picks a stored
-// bundle k uniformly among those the path has not just used, takes d = omega_k or -omega_k (the
+// bundle k uniformly (random directions: among those the path has not just used), takes d = omega_k or -omega_k (the
 // one on the shading normal's side: density p_r(d) = 1 / (2 pi) on that hemisphere for uniform
 // directions), finds the point's place in its bundle pixel and the next fragment along d in the
 // depth-sorted list: that fragment's hit payload is the next vertex. No ray is traced. Fragments are ordered by where x's own ray crosses their
 // planes, x's own triangle skipped (bundle/Traversal.glsl: blBundleSurfaceNearest), so the
-// winding of the faces does not matter and thin walls do not leak. Bundles are drawn without
-// replacement along a path (blMultibouncePickBundle): d is never the direction the path arrived
-// along. At every vertex: emission when the path meets an emitter's front face, point/spot light
+// winding of the faces does not matter and thin walls do not leak. With random directions the
+// bundles are drawn without replacement along a path (blMultibouncePickBundle): d is never the
+// direction the path arrived along. At every vertex: emission when the path meets an emitter's front face, point/spot light
 // by cube shadow maps, the environment when the path escapes.
 // Weights are f cos / p_r; Russian roulette after push.rrSegments segments. Textured albedo at every
 // vertex from the packed texture buffer (gpu/PackedTextureLookup.glsl: no descriptor indexing),
@@ -95,8 +95,9 @@ void tracePath(vec3 x0, uint own0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 e
     RandomStream rng = blRandomStream(push.seed, pixelIndex, sampleIndex);
     vec3 throughput = vec3(1.0);
     uint own = own0; // x's triangle: its fragments are x's own surface (perfect bundles)
-    // Bundles are drawn without replacement along the path (MultibounceShared.h).
-    MultibounceBundleWindow window = blMultibounceBundleWindow(push.pool.slots);
+    // Random directions: bundles are drawn without replacement along the path (MultibounceShared.h).
+    MultibounceBundleWindow window =
+        blMultibounceBundleWindow(push.pool.slots, (push.flags & kMultibounceDistinctBundles) != 0u);
     // x was reached by `segments` segments; its emission is counted.
     for (uint segments = 1u; segments < push.maxSegments; ++segments) {
         layers[layerOf(segments + 1u)] += throughput * directLight(x, n, m, albedo, wo);

@@ -2,8 +2,9 @@
 // B2; shaders/modes/multibounce/MultibounceShared.h, the functions the path shader runs). Drawn with
 // replacement (k = floor(u K)), a path went back along the bundle it arrived by with probability
 // 1 / K: to its previous vertex again, a point mass the weight f cos / p_r treats as if it had the
-// continuous density 1 / (2 pi). These checks are exact: the draw is uniform over the bundles the
-// window leaves, and a path never reuses a bundle within min(9, K) segments.
+// continuous density 1 / (2 pi). With independent random directions (the window is used only
+// then) these checks are exact: the draw is uniform over the bundles the window leaves, and a path
+// never reuses a bundle within min(9, K) segments.
 #include <modes/multibounce/MultibounceShared.h>
 
 #include <gtest/gtest.h>
@@ -30,7 +31,7 @@ std::vector<std::uint32_t> counts(const MultibounceBundleWindow& w, std::uint32_
 // Uniform over the bundles not in the window, none of those in it, whatever their order.
 TEST(MultibounceBundleSequence, DrawIsUniformOverTheUnusedBundles) {
     for (std::uint32_t slots : {2u, 3u, 4u, 9u, 16u, 64u}) {
-        MultibounceBundleWindow w = blMultibounceBundleWindow(slots);
+        MultibounceBundleWindow w = blMultibounceBundleWindow(slots, true);
         EXPECT_EQ(w.size, std::min(kMultibounceRecentBundles, slots - 1));
         std::mt19937 rng(slots);
         for (std::uint32_t step = 0; step < 20; ++step) {
@@ -57,7 +58,7 @@ TEST(MultibounceBundleSequence, DrawIsUniformOverTheUnusedBundles) {
 // never all K used up.
 TEST(MultibounceBundleSequence, PathsNeverReuseARecentBundle) {
     for (std::uint32_t slots : {1u, 2u, 5u, 64u}) {
-        MultibounceBundleWindow w = blMultibounceBundleWindow(slots);
+        MultibounceBundleWindow w = blMultibounceBundleWindow(slots, true);
         std::mt19937 rng(7);
         std::vector<std::uint32_t> path;
         for (int segment = 0; segment < 200; ++segment) {
@@ -74,4 +75,14 @@ TEST(MultibounceBundleSequence, PathsNeverReuseARecentBundle) {
             blMultibounceRemember(w, k);
         }
     }
+}
+
+// Halton directions (stratified within an iteration) keep the draw over all K: no window.
+TEST(MultibounceBundleSequence, StratifiedDirectionsDrawOverAllBundles) {
+    MultibounceBundleWindow w = blMultibounceBundleWindow(16, false);
+    EXPECT_EQ(w.size, 0u);
+    blMultibounceRemember(w, 3);
+    EXPECT_EQ(w.count, 0u);
+    const std::vector<std::uint32_t> c = counts(w, 16, 16 * 64);
+    for (std::uint32_t k = 0; k < 16; ++k) EXPECT_NEAR(double(c[k]), 64.0, 1.0) << "bundle " << k;
 }
