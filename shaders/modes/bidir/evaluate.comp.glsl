@@ -220,18 +220,20 @@ vec3 bundleTerm(uint k, BidirVpl v, GpuMaterial mv, vec3 x, vec3 n, GpuMaterial 
     }
     BundleNodes nodes = BundleNodes(push.pool.nodes);
     uint head = blBundleHead(blBundlePoolHeads(push.pool, k), frame, bundlePixel);
-    float crossing;
+    float unusedCrossing; // y stays on the centre ray (below)
     uint hit = blBundleSurfaceNearest(nodes, head, BundleHitPayload(push.pool.payload),
                                       push.pool.payloadKind == kBundlePayloadHit, gOwnTriangle, frame, bundlePixel, x,
-                                      depth, n, side, crossing);
+                                      depth, n, side, unusedCrossing);
     if (hit == kBundleNil) {
         return vec3(0.0); // escapes: environment light is not bidir's one-bounce term
     }
     BundleHit payload = BundleHitPayload(push.pool.payload).hits[hit];
-    // y on x's own ray, on the plane of the fragment found on the bundle pixel's centre ray (up to
-    // half a pixel beside it; where that plane is not what x's ray meets, the bundle resolution's
-    // bias, shrinking with the pixel size).
-    vec3 y = x + (crossing - depth) * frame.direction;
+    // y on the bundle pixel's centre ray, up to half a pixel beside x's exact ray (the bundle
+    // resolution's bias, shrinking with the pixel size): the surface point the fragment sampled.
+    // Not moved onto x's ray (where multibounce puts its next vertex): y is where VPLs connect, and
+    // a point on the fragment's plane beyond its polygon made the unclamped two-bounce term spiky
+    // (Bidir.TwoBounceUnclampedConvergesToReferenceIndirect2: region 7 +10.4% +- 7%, noise gate).
+    vec3 y = blBundlePixelRay(frame, vec2(bundlePixel) + 0.5) + nodes.nodes[hit].depth * frame.direction;
     vec3 toX = x - y;
     float r2 = dot(toX, toX);
     if (!(r2 > 0.0)) {
