@@ -303,7 +303,12 @@ void MultibounceMode::iterate(const IterationInfo& info) {
     push.emitterCount = g.emitterCount;
     push.flags = (g.scene->environmentPresent() ? shader::kMultibounceEnvironment : 0u) |
                  (g.scene->features().textured ? shader::kMultibounceTextured : 0u) |
-                 (mSettings.getString(kSplatUv) == "centre" ? shader::kMultibounceSplatCentreUv : 0u);
+                 (mSettings.getString(kSplatUv) == "centre" ? shader::kMultibounceSplatCentreUv : 0u) |
+                 // Independent directions: a path's bundles drawn without replacement (exact). Halton
+                 // directions are stratified within an iteration: drawn with replacement (MultibounceShared.h).
+                 (sequenceOf(mSettings.getString(kDirections)) == DirectionSequence::Random
+                      ? shader::kMultibounceDistinctBundles
+                      : 0u);
     push.environmentRotation = g.scene->environmentRotation();
     push.maxSegments = static_cast<std::uint32_t>(mSettings.getInt(kMaxSegments));
     push.rrSegments = static_cast<std::uint32_t>(mSettings.getInt(kRrSegments));

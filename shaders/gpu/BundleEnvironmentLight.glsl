@@ -23,8 +23,7 @@ struct BlBundleLightSample {
     float side;     // +1 for omega, -1 for -omega
     vec3 radiance;  // L_e(d)
     float pdf;
-    float cosine;     // |n . omega|
-    float ownSurface; // depth tolerance for the point's own surface, world units
+    float cosine;     // |n . omega| (the own-surface tolerance: blBundleSurfaceEpsilon)
     bool usable;      // false: nothing to add (wrong side, zero pdf or black)
 };
 
@@ -38,7 +37,6 @@ BlBundleLightSample blBundleLightSample(BundleFrame frame, BlBundleLight light, 
     s.cosine = abs(c);
     s.usable = (!light.forwardOnly || s.side > 0.0) && s.cosine > 0.0 && s.pdf > 0.0 &&
                dot(s.radiance, s.radiance) > 0.0;
-    s.ownSurface = blBundleOwnSurfaceEpsilon(frame, s.cosine);
     return s;
 }
 

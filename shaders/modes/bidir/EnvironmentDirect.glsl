@@ -1,7 +1,8 @@
 // Mode bidir: direct environment light at a camera point by this frame's environment bundles
 // ([TO12] section 3, Eq. 1-2; shaders/gpu/BundleEnvironmentLight.glsl): with E bundles along
 // directions omega_e drawn by Eq. 2's importance q, a point x with normal n uses d = +-omega_e on
-// its side, unoccluded when its bundle pixel's list has no surface beyond x along d:
+// its side, unoccluded when its bundle pixel's list has no surface beyond x along d (x's own
+// surface never counts, whatever its winding: bundle/Traversal.glsl, blBundleSurfaceNearest):
 //   (1 / E) sum_e L_e(d) f(x, d, w_o) (n.d) V(x, d) / p_r(d),  p_r(d) = q(d) + q(-d).
 // Needs push.pool (BidirPush) and the Traversal helpers; a point outside an environment bundle's
 // frame sets gOutsideBundle (its sample is dropped, as for the pairs' bundles).
@@ -33,7 +34,10 @@ vec3 bidirEnvironmentDirect(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo)
         }
         BundleNodes nodes = BundleNodes(push.pool.nodes);
         uint head = blBundleHead(blBundlePoolHeads(push.pool, slot), frame, bundlePixel);
-        if (blBundleNearest(nodes, head, depth, s.side, s.ownSurface, frame) == kBundleNil) {
+        float unusedCrossing;
+        if (blBundleSurfaceNearest(nodes, head, BundleHitPayload(push.pool.payload),
+                                   push.pool.payloadKind == kBundlePayloadHit, gOwnTriangle, frame, bundlePixel, x,
+                                   depth, n, s.side, unusedCrossing) == kBundleNil) {
             sum += blBundleLightContribution(s, m, albedo, n, wo);
         }
     }

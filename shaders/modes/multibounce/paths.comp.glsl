@@ -2,11 +2,15 @@
 #extension GL_GOOGLE_include_directive : require
 // Mode multibounce, one camera path per pixel through K resident omnidirectional bundles ([TO12]
 // section 7, EQUATIONS.md section 3). From the G-buffer's visible point, each bounce picks a stored
-// bundle k uniformly, takes d = omega_k or -omega_k (the one on the shading normal's side: density
-// p_r(d) = 1 / (2 pi) on that hemisphere for uniform directions), finds the point's place in its
-// bundle pixel and the next fragment along d in the depth-sorted list: that fragment's hit payload
-// is the next vertex. No ray is traced. At every vertex: emission when the path meets an emitter's
-// front face, point/spot light by cube shadow maps, the environment when the path escapes.
+// bundle k uniformly (random directions: among those the path has not just used), takes d = omega_k or -omega_k (the
+// one on the shading normal's side: density p_r(d) = 1 / (2 pi) on that hemisphere for uniform
+// directions), finds the point's place in its bundle pixel and the next fragment along d in the
+// depth-sorted list: that fragment's hit payload is the next vertex. No ray is traced. Fragments are ordered by where x's own ray crosses their
+// planes, x's own triangle skipped (bundle/Traversal.glsl: blBundleSurfaceNearest), so the
+// winding of the faces does not matter and thin walls do not leak. With random directions the
+// bundles are drawn without replacement along a path (blMultibouncePickBundle): d is never the
+// direction the path arrived along. At every vertex: emission when the path meets an emitter's front face, point/spot light
+// by cube shadow maps, the environment when the path escapes.
 // Weights are f cos / p_r; Russian roulette after push.rrSegments segments. Textured albedo at every
 // vertex from the packed texture buffer (gpu/PackedTextureLookup.glsl: no descriptor indexing),
 // at the payload's UV (perfect bundles) or the splat's UV at the hit (imperfect bundles).
@@ -72,10 +76,10 @@ vec3 directLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
     return radiance;
 }
 
-// One camera path from the G-buffer's vertex (x0, n0 facing the camera, material m0), its
-// contributions split by path length into `layers`.
-void tracePath(vec3 x0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 emitted, uint pixelIndex, uint sampleIndex,
-               out vec3 layers[kPathLayerCount]) {
+// One camera path from the G-buffer's vertex (x0 on triangle own0, n0 facing the camera, material
+// m0), its contributions split by path length into `layers`.
+void tracePath(vec3 x0, uint own0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 emitted, uint pixelIndex,
+               uint sampleIndex, out vec3 layers[kPathLayerCount]) {
     for (uint l = 0u; l < kPathLayerCount; ++l) {
         layers[l] = vec3(0.0);
     }
@@ -90,12 +94,17 @@ void tracePath(vec3 x0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 emitted, uin
     BundleHitPayload hits = BundleHitPayload(push.pool.payload);
     RandomStream rng = blRandomStream(push.seed, pixelIndex, sampleIndex);
     vec3 throughput = vec3(1.0);
+    uint own = own0; // x's triangle: its fragments are x's own surface (perfect bundles)
+    // Random directions: bundles are drawn without replacement along the path (MultibounceShared.h).
+    MultibounceBundleWindow window =
+        blMultibounceBundleWindow(push.pool.slots, (push.flags & kMultibounceDistinctBundles) != 0u);
     // x was reached by `segments` segments; its emission is counted.
     for (uint segments = 1u; segments < push.maxSegments; ++segments) {
         layers[layerOf(segments + 1u)] += throughput * directLight(x, n, m, albedo, wo);
 
         vec2 u = blRandom2(rng);
-        uint k = min(uint(u.x * float(push.pool.slots)), push.pool.slots - 1u);
+        uint k = blMultibouncePickBundle(window, u.x, push.pool.slots);
+        blMultibounceRemember(window, k);
         BundleFrame frame = blBundlePoolFrame(push.pool, k);
         float cosine = dot(n, frame.direction);
         float side = cosine >= 0.0 ? 1.0 : -1.0;
@@ -117,7 +126,10 @@ void tracePath(vec3 x0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 emitted, uin
             break; // outside the frame around the scene's bounding sphere: cannot happen for scene points
         }
         uint head = blBundleHead(blBundlePoolHeads(push.pool, k), frame, bundlePixel);
-        uint hit = blBundleSortedNearest(nodes, head, depth, side, blBundleOwnSurfaceEpsilon(frame, cosine), frame);
+        // Splat payload ids are point indices: no identity to skip by (their normals are the planes).
+        uint ownId = push.pointsPerDirection == 0u ? own : kBundleNil;
+        float crossing;
+        uint hit = blBundleSurfaceNearest(nodes, head, hits, true, ownId, frame, bundlePixel, x, depth, n, side, crossing);
         if (hit == kBundleNil) {
             if ((push.flags & kMultibounceEnvironment) != 0u) {
                 layers[layerOf(segments + 1u)] +=
@@ -127,9 +139,11 @@ void tracePath(vec3 x0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 emitted, uin
         }
         BundleNode node = nodes.nodes[hit];
         BundleHit payload = hits.hits[hit];
-        // The next vertex lies on the bundle pixel's centre ray, up to half a pixel beside the
-        // exact ray from x: the bundle-resolution bias, which shrinks with the pixel size.
-        x = blBundlePixelRay(frame, vec2(bundlePixel) + 0.5) + node.depth * frame.direction;
+        // The next vertex lies on x's own ray, on the plane of the fragment found on the bundle
+        // pixel's centre ray (up to half a pixel beside it): where that plane is not the surface
+        // x's ray meets (edges, curvature within the pixel), the bundle-resolution bias, which
+        // shrinks with the pixel size. The payload (normal, UV) is the centre ray's.
+        x += (crossing - depth) * frame.direction;
         wo = -d;
         m = materials[payload.material & kBundleHitMaterialMask];
         uint triangle = payload.id;
@@ -152,6 +166,7 @@ void tracePath(vec3 x0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 emitted, uin
                 uv += vec2(dot(vec3(a, b.x), offset), dot(vec3(b.y, c), offset));
             }
         }
+        own = triangle;
         albedo = blPackedTextureAlbedo(m, uv);
         vec3 shading = blUnpackOctahedral(packedNormal);
         n = dot(shading, wo) >= 0.0 ? shading : -shading; // two-sided reflection
@@ -184,10 +199,12 @@ void main() {
     GpuMaterial m0 = materials[uint(normalMaterial.w)];
     vec3 albedo0 = imageLoad(gbuffer[kGBufferAlbedo], pixel).rgb;
     vec3 emitted = imageLoad(gbuffer[kGBufferEmission], pixel).rgb;
+    vec2 unusedBarycentrics;
+    uint own0 = blGBufferSurface(pixel, unusedBarycentrics);
     uint pixelIndex = uint(pixel.y) * push.width + uint(pixel.x);
     for (uint s = 0u; s < push.pathsPerPixel; ++s) {
         vec3 layers[kPathLayerCount];
-        tracePath(x0, normalMaterial.xyz, m0, albedo0, emitted, pixelIndex, push.iteration * push.pathsPerPixel + s, layers);
+        tracePath(x0, own0, normalMaterial.xyz, m0, albedo0, emitted, pixelIndex, push.iteration * push.pathsPerPixel + s, layers);
         blAccumulate(pixel, layers);
     }
 }

@@ -35,14 +35,20 @@ vec3 blSkylightIrradiance(vec3 n) {
                mix(table.entries[i.z].rgb, table.entries[i.w].rgb, t.x), t.y);
 }
 
-bool occluded(BlBundleLightSample s, ivec2 bundlePixel, float depth) {
+// Both visibilities count what lies past x's own surface by blBundleSurfaceEpsilon, whatever its
+// winding (bundle/Traversal.glsl). These bundles carry no hit payload: every fragment is taken
+// parallel to x's plane, nothing is skipped by identity.
+bool occluded(BlBundleLightSample s, ivec2 bundlePixel, vec3 x, float depth, vec3 n) {
     if (push.visibility == kSkylightVisibilityBundle) {
         uint head = blBundleHead(BundleHeads(push.headAddress), frame, bundlePixel);
-        return blBundleNearest(BundleNodes(push.nodeAddress), head, depth, s.side, s.ownSurface, frame) != kBundleNil;
+        float unusedCrossing;
+        return blBundleSurfaceNearest(BundleNodes(push.nodeAddress), head, BundleHitPayload(uvec2(0u)), false,
+                                      kBundleNil, frame, bundlePixel, x, depth, n, s.side, unusedCrossing) != kBundleNil;
     }
     // The map keeps the surface nearest the light: anything beyond the point's own surface along
     // omega occludes it (no face test: a shadow map has no faces).
-    return imageLoad(depthMap, bundlePixel).r > depth + s.ownSurface;
+    return imageLoad(depthMap, bundlePixel).r >
+           blBundleSurfaceDepth(frame, bundlePixel, x, depth, n) + blBundleSurfaceEpsilon(frame, s.cosine);
 }
 
 void main() {
@@ -74,7 +80,7 @@ void main() {
         layers[l] = vec3(0.0);
     }
     vec3 albedo = imageLoad(gbuffer[kGBufferAlbedo], pixel).rgb;
-    if (s.usable && !occluded(s, bundlePixel, depth)) {
+    if (s.usable && !occluded(s, bundlePixel, position, depth, n)) {
         vec3 wo = normalize(camera.position - position);
         layers[kPathDirect] = blBundleLightContribution(s, materials[uint(normalMaterial.w)], albedo, n, wo);
     }
