@@ -28,6 +28,7 @@ LostWorkVerdict judgeLostWork(const std::string& mode, const ImageSet& images) {
             total = l.total;
         }
     }
+    for (const std::string& note : images.notes) v.warnings.push_back(mode + ": " + note);
     for (const auto& [unit, counts] : units) {
         if (counts.first >= counts.second) {
             v.refusal = mode + ": every one of its " + std::to_string(counts.second) + " " + unit +

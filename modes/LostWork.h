@@ -30,7 +30,7 @@ struct LostWorkVerdict {
     std::string refusal;               // non-empty when some unit lost all of its work
 };
 
-// `mode` heads each message. A unit whose counters add up to its whole total (and the total is not
+// `mode` heads each message; ImageSet::notes come after the lost-work warnings. A unit whose counters add up to its whole total (and the total is not
 // zero) means the image holds none of the work it was meant to: that is a refusal.
 LostWorkVerdict judgeLostWork(const std::string& mode, const ImageSet& images);
 

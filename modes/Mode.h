@@ -41,6 +41,9 @@ struct ImageSet {
     std::uint32_t iterations = 0;
     std::vector<std::pair<std::string, double>> counters; // mode statistics, e.g. {"rays", 1.2e9}
     std::vector<LostWork> lost; // work thrown away; drivers warn and refuse (modes/LostWork.h)
+    // What the user should know about this image that is not lost work, e.g. every VPL escaped the
+    // scene (zero samples, a valid estimate of no light): drivers say each as a warning.
+    std::vector<std::string> notes;
 
     const Image& radiance() const { return layers.at(0).second; }
 };

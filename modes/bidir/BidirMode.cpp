@@ -13,6 +13,7 @@
 #include "vk/Descriptors.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <modes/bidir/BidirEnvironment.h>
 #include <modes/bidir/BidirShared.h>
@@ -43,6 +44,15 @@ std::uint32_t suppressionOf(const std::string& name) {
 // Skipped, the shader takes blEvalBrdf's path it would take anyway for Lambertian materials.
 bool suppressionRuns(const Settings& settings, const SceneFeatures& f) {
     return settings.getString(BidirMode::kSuppression) != "none" && f.glossy && f.shadowCastingLights() > 0;
+}
+
+bool finiteVec(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Every field the evaluation reads of a VPL is finite (a light ray's hit at float's limits can
+// produce an infinite area density or a NaN position; such a VPL is lost, not a sample of zero).
+bool finiteVpl(const shader::BidirVpl& v) {
+    return finiteVec(v.position) && finiteVec(v.normal) && finiteVec(v.albedo) && finiteVec(v.intensity) &&
+           finiteVec(v.toLight) && finiteVec(v.cubeCentre) && std::isfinite(v.pdfLight) && std::isfinite(v.areaPdf);
 }
 
 std::uint32_t strategyOf(const std::string& name) {
@@ -136,7 +146,8 @@ struct BidirMode::Gpu {
     std::uint64_t nodesLast = 0;
     std::uint32_t rebuilds = 0;
     std::uint64_t invalidVpls = 0; // over all frames: light rays that escaped or met black surfaces
-    std::uint64_t sampledVpls = 0; // over all frames: what invalidVpls is a part of
+    std::uint64_t lostVpls = 0;    // over all frames: VPLs whose record was not finite (never used)
+    std::uint64_t sampledVpls = 0; // over all frames: what invalidVpls and lostVpls are parts of
     std::vector<glm::vec3> visiblePoints; // fit = visible: this frame's G-buffer points
     double pixelGainSum = 0.0;            // sum over bundles of (sphere frame's pixel / this frame's pixel)
     std::uint64_t bundlesBuilt = 0;
@@ -439,7 +450,13 @@ void BidirMode::iterate(const IterationInfo& info) {
                                      kVplLiftFraction * g.bounds.radius(), &g.timer)
                      : g.vpls->sample(mInterleave->sequenceBase(mIterations, pairs), pairs, static_cast<std::uint32_t>(info.seed), info.time,
                               kVplLiftFraction * g.bounds.radius());
-        for (const shader::BidirVpl& v : vpls) g.invalidVpls += v.valid ? 0u : 1u;
+        for (shader::BidirVpl& v : vpls) {
+            if (v.valid && !finiteVpl(v)) {
+                v.valid = 0u; // lost work, not a zero sample: counted apart and refused if it is all
+                ++g.lostVpls;
+            }
+            g.invalidVpls += v.valid ? 0u : 1u;
+        }
         g.sampledVpls += vpls.size();
     }
     std::memcpy(g.vplBuffer.data(), vpls.data(), sizeof(shader::BidirVpl) * pairs);
@@ -519,9 +536,17 @@ ImageSet BidirMode::resolve() {
         // The last frame's share of accepted reprojected caches ([TO12s] Fig. 1 b, 4 c).
         out.layers.emplace_back("cache_hits", mInterleave->cacheHits());
     }
+    // A VPL whose light ray escaped or met a black surface (or the back of one) is a sample of
+    // zero, a valid estimate (a point light outside a closed box lights nothing inside it); only
+    // VPLs whose record is not finite are lost work. That every VPL is zero is still worth saying.
     out.counters.emplace_back("invalid_vpls", double(g.invalidVpls));
-    out.lost.push_back({"invalid_vpls", g.invalidVpls, g.sampledVpls, "VPLs",
-                        "carry no light (the light ray escaped, met a black surface or the back of one)"});
+    out.lost.push_back({"non_finite_vpls", g.lostVpls, g.sampledVpls, "VPLs", "were not finite and left out"});
+    if (g.sampledVpls > 0 && g.invalidVpls == g.sampledVpls) {
+        out.notes.push_back("all " + std::to_string(g.sampledVpls) +
+                            " VPLs carry no light (their light rays escaped or met black surfaces or the backs of "
+                            "them), so the image has no light reflected from a VPL; if the scene should, raise "
+                            "pairs_per_frame or iterations (invalid_vpls)");
+    }
     if (g.rsm) {
         out.counters.emplace_back("rsm_texel_mismatches", double(g.rsm->texelMismatches()));
     }

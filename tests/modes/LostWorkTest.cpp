@@ -36,11 +36,22 @@ TEST(LostWork, AllOfAUnitLostIsARefusal) {
     EXPECT_NE(judgeLostWork("raster", withSamples(40, 24, 64)).refusal, "");
     EXPECT_EQ(judgeLostWork("raster", withSamples(40, 23, 64)).refusal, "");
     ImageSet vpls = withSamples(0, 0, 64);
-    vpls.lost.push_back({"invalid_vpls", 16, 16, "VPLs", "carry no light"});
+    vpls.lost.push_back({"non_finite_vpls", 16, 16, "VPLs", "were not finite and left out"});
     const LostWorkVerdict v = judgeLostWork("bidir", vpls);
     EXPECT_EQ(v.refusal.rfind("bidir: every one of its 16 VPLs was lost", 0), 0u) << v.refusal;
     vpls.lost.back().count = 15;
     EXPECT_EQ(judgeLostWork("bidir", vpls).refusal, "");
+}
+
+// Notes (e.g. every VPL escaped: zero samples, not lost work) are said after the lost work and
+// never refuse an image.
+TEST(LostWork, NotesAreWarningsNeverRefusals) {
+    ImageSet s = withSamples(1, 0, 64);
+    s.notes.push_back("all 8 VPLs carry no light");
+    const LostWorkVerdict v = judgeLostWork("bidir", s);
+    EXPECT_EQ(v.refusal, "");
+    ASSERT_EQ(v.warnings.size(), 2u);
+    EXPECT_EQ(v.warnings[1], "bidir: all 8 VPLs carry no light");
 }
 
 TEST(LostWork, UnknownOrEmptyTotalsAreNeverRefused) {

@@ -97,8 +97,9 @@ TEST_F(Precision, BoxAMillionMillimetresOutRendersLikeTheBox) {
             c.mode, d.ratio, d.differing,
             base.camera.resolution.x * std::size_t(base.camera.resolution.y), d.worst);
         EXPECT_NEAR(d.ratio, 1.0, c.ratio) << c.mode;
-        if (c.differing >= 0.0)
+        if (c.differing >= 0.0) {
             EXPECT_LE(double(d.differing), c.differing * 32 * 32) << c.mode;
+        }
     }
 }
 
