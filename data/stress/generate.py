@@ -284,12 +284,20 @@ def write_room_cases(w):
          "wall-1e-2", 0.8)
     vs, fs = box((0, 0, 0), (1, 1, 1), inward=False)
     w.mesh("dark-box", "A closed unit box, faces outward.", vs, fs)
+    w.mesh("open-box", "The unit box without its top face (y = 1), faces outward.", vs, [f for f in fs if f != [4, 8, 7, 3]])
     camera = camera_block((0.5, 0.5, 0.9), (0.5, 0.5, 0.0), 80.0)
-    head = "# A closed box with the camera inside and no light inside: the image must be exactly black.\n"
+    head = ("# A closed box with the camera inside and no light inside: no light may reach what the camera\n"
+            "# sees. Leaks at the creases (shadow cube texels and bundle pixels straddling the edge where an\n"
+            "# outer face meets the lit one) are judged against dark-box-lit.\n")
     w.write("dark-box.toml", head + "# The point light is outside.\n\n" + camera + white +
             mesh_block("dark-box", "white") + light_block((0.5, 2.0, 0.5), 1.0))
     w.write("dark-box-sky.toml", head + "# Under a constant unit sky (for skylight).\n\n" + camera + white +
             mesh_block("dark-box", "white") + SKY_BLOCK)
+    lit = "# The lit twin of dark-box.toml, what its leak is measured against: "
+    w.write("dark-box-lit.toml", lit + "the same light inside the box.\n\n" + camera + white +
+            mesh_block("dark-box", "white") + light_block((0.5, 0.5, 0.5), 1.0))
+    w.write("dark-box-lit-sky.toml", lit + "the box open at the top under the\n# constant unit sky (for skylight).\n\n" +
+            camera + white + mesh_block("open-box", "white") + SKY_BLOCK)
 
 
 def write_phong_cases(w):

@@ -121,8 +121,6 @@ def judge(renderer, mode, case):
     scene = cases.scene_for(mode, case, case.scene)
     if case.kind == "unlit":
         return verdicts.unlit([renderer.run(mode, scene, cases.SEEDS[0])])
-    if case.kind == "black":
-        return verdicts.black(seeds_of(renderer, mode, scene, case))
     runs = seeds_of(renderer, mode, scene, case)
     if runs[-1].image is None:
         return verdicts.twin(runs, runs)  # the problem is the verdict

@@ -151,16 +151,6 @@ def leak(dark_runs, lit_runs):
     return Verdict("FAIL", cell, detail)
 
 
-def black(runs):
-    """Every pixel of every seed exactly 0."""
-    bad = _problem(runs)
-    if bad:
-        return bad
-    top = max(r.image.max for r in runs)
-    detail = "largest pixel %g, mean %g over %d seeds" % (top, stats.mean([r.image.mean for r in runs]), len(runs))
-    return Verdict("pass", "0 (black)", detail) if top == 0 else Verdict("FAIL", "max %.3g" % top, detail)
-
-
 def unlit(runs):
     """A scene with lights the mode cannot render: refused, or rendered with a warning that says so."""
     r = runs[0]
