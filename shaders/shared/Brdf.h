@@ -5,6 +5,7 @@
 #define BL_SHARED_BRDF_H
 #include "GpuTypes.h"
 #include "Frame.h"
+#include "CosinePower.h"
 
 BL_NAMESPACE_BEGIN
 
@@ -14,8 +15,16 @@ BL_INLINE vec3 blLambert(vec3 albedo) { return albedo * kInvPi; }
 // f = specular (e + 2) / (2 pi) max(0, r.wo)^e. Its directional albedo is <= specular.
 BL_INLINE vec3 blPhongLobe(vec3 specular, float exponent, vec3 n, vec3 wi, vec3 wo) {
     vec3 r = 2.0f * dot(n, wi) * n - wi;
-    float c = max(0.0f, dot(r, wo));
-    return specular * ((exponent + 2.0f) * (0.5f * kInvPi) * pow(c, exponent));
+    return specular * ((exponent + 2.0f) * (0.5f * kInvPi) * blCosinePower(r, wo, exponent));
+}
+
+// The exponent of Ashikhmin-Shirley's (n.h)^e at unit half vector h: (nu (t.h)^2 + nv (b.h)^2) /
+// (1 - (n.h)^2), the denominator taken as (t.h)^2 + (b.h)^2, equal for unit h and without the
+// rounding of 1 - (n.h)^2 near the lobe's axis.
+BL_INLINE float blAshikhminShirleyExponent(float nu, float nv, vec3 t, vec3 b, vec3 h) {
+    float th = dot(t, h);
+    float bh = dot(b, h);
+    return (nu * th * th + nv * bh * bh) / max(th * th + bh * bh, 1e-30f);
 }
 
 // Ashikhmin-Shirley (2000) anisotropic specular lobe with Schlick Fresnel of reflectance
@@ -28,14 +37,10 @@ BL_INLINE vec3 blAshikhminShirleyLobe(vec3 specular, float nu, float nv, vec3 n,
         return vec3(0.0f);
     }
     vec3 h = normalize(wi + wo);
-    float nh = max(dot(n, h), 0.0f);
-    float th = dot(t, h);
-    float bh = dot(b, h);
-    float sin2 = max(1.0f - nh * nh, 1e-12f);
-    float e = (nu * th * th + nv * bh * bh) / sin2;
+    float e = blAshikhminShirleyExponent(nu, nv, t, b, h);
     float kh = max(dot(wi, h), 1e-6f);
     vec3 fresnel = specular + (vec3(1.0f) - specular) * pow(1.0f - kh, 5.0f);
-    float d = sqrt((nu + 1.0f) * (nv + 1.0f)) * (0.125f * kInvPi) * pow(nh, e);
+    float d = sqrt((nu + 1.0f) * (nv + 1.0f)) * (0.125f * kInvPi) * blCosinePower(n, h, e);
     return fresnel * (d / (kh * max(cosI, cosO)));
 }
 

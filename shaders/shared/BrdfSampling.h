@@ -11,15 +11,15 @@ BL_NAMESPACE_BEGIN
 
 // Normalized Phong lobe: directions about the mirror direction r with pdf (e + 1) / (2 pi) cos^e.
 BL_INLINE vec3 blSamplePhongLobe(float exponent, vec3 r, vec2 u) {
-    float cosA = pow(1.0f - u.x, 1.0f / (exponent + 1.0f));
-    float sinA = sqrt(max(0.0f, 1.0f - cosA * cosA));
+    float oneMinusCos = blOneMinusCosineSample(u.x, exponent);
+    float cosA = 1.0f - oneMinusCos;
+    float sinA = sqrt(max(0.0f, oneMinusCos * (2.0f - oneMinusCos)));
     float phi = kTwoPi * u.y;
     return blToWorld(vec3(sinA * cos(phi), sinA * sin(phi), cosA), r);
 }
 
 BL_INLINE float blPhongLobePdf(float exponent, vec3 r, vec3 wo) {
-    float c = max(0.0f, dot(r, wo));
-    return (exponent + 1.0f) * (0.5f * kInvPi) * pow(c, exponent);
+    return (exponent + 1.0f) * (0.5f * kInvPi) * blCosinePower(r, wo, exponent);
 }
 
 // Ashikhmin-Shirley (2000) half-vector sampling, exponents nu along t and nv along b.
@@ -39,8 +39,9 @@ BL_INLINE vec3 blSampleAshikhminShirley(float nu, float nv, vec3 n, vec3 t, vec3
     float c = cos(phi);
     float s = sin(phi);
     float e = nu * c * c + nv * s * s;
-    float cosH = pow(1.0f - u.y, 1.0f / (e + 1.0f));
-    float sinH = sqrt(max(0.0f, 1.0f - cosH * cosH));
+    float oneMinusCos = blOneMinusCosineSample(u.y, e);
+    float cosH = 1.0f - oneMinusCos;
+    float sinH = sqrt(max(0.0f, oneMinusCos * (2.0f - oneMinusCos)));
     vec3 h = sinH * c * t + sinH * s * b + cosH * n;
     return 2.0f * dot(wi, h) * h - wi;
 }
@@ -52,10 +53,8 @@ BL_INLINE float blAshikhminShirleyPdf(float nu, float nv, vec3 n, vec3 t, vec3 b
     if (nh <= 0.0f || kh <= 0.0f) {
         return 0.0f;
     }
-    float th = dot(t, h);
-    float bh = dot(b, h);
-    float e = (nu * th * th + nv * bh * bh) / max(1.0f - nh * nh, 1e-12f);
-    float pdfH = sqrt((nu + 1.0f) * (nv + 1.0f)) * (0.5f * kInvPi) * pow(nh, e);
+    float e = blAshikhminShirleyExponent(nu, nv, t, b, h);
+    float pdfH = sqrt((nu + 1.0f) * (nv + 1.0f)) * (0.5f * kInvPi) * blCosinePower(n, h, e);
     return pdfH / (4.0f * kh);
 }
 

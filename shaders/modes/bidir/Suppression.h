@@ -69,14 +69,10 @@ BL_INLINE vec3 blBidirEvalBrdf(GpuMaterial m, vec3 albedo, vec3 n, vec3 wi, vec3
         float d;
         if (anisotropic) {
             vec3 h = normalize(wi + wo);
-            float nh = max(dot(n, h), 0.0f);
-            float th = dot(t, h);
-            float bh = dot(b, h);
-            float sin2 = max(1.0f - nh * nh, 1e-12f);
-            d = peak * pow(nh, (m.exponentU * th * th + m.exponentV * bh * bh) / sin2);
+            d = peak * blCosinePower(n, h, blAshikhminShirleyExponent(m.exponentU, m.exponentV, t, b, h));
         } else {
             vec3 r = 2.0f * dot(n, wi) * n - wi;
-            d = peak * pow(max(0.0f, dot(r, wo)), m.exponentU);
+            d = peak * blCosinePower(r, wo, m.exponentU);
         }
         return blLambert(albedo) + (d > allowed ? lobe * (allowed / d) : lobe);
     }
