@@ -146,29 +146,6 @@ float crossing(const glm::vec3& omega, float t, const glm::vec3& e, const glm::v
     return t - rise / c;
 }
 
-// The normal a bundle fragment's hit payload carries: the shading normal at the hit (a flat face's
-// plane; the interpolated vertex normal on smooth meshes, whose facets' own planes would tilt by
-// the scan's noise). Vertex normals are taken as the scene stores them (static meshes: world
-// space).
-glm::vec3 fragmentNormal(const EmbreeScene& rt, const EmbreeScene::RayHit& h, const glm::vec3& p) {
-    const Mesh& mesh = rt.scene().meshes[h.mesh];
-    if (mesh.normals.size() != mesh.positions.size() || mesh.animation.animated())
-        return h.geometricNormal;
-    glm::vec3 a, b, c;
-    rt.triangle(h.mesh, h.triangle, a, b, c);
-    const glm::vec3 n = glm::cross(b - a, c - a);
-    const float area2 = glm::dot(n, n);
-    if (!(area2 > 0.0f))
-        return h.geometricNormal;
-    const float wb = glm::dot(glm::cross(p - a, c - a), n) / area2;
-    const float wc = glm::dot(glm::cross(b - a, p - a), n) / area2;
-    const glm::uvec3 t = mesh.triangles[h.triangle];
-    const glm::vec3 s =
-        (1.0f - wb - wc) * mesh.normals[t.x] + wb * mesh.normals[t.y] + wc * mesh.normals[t.z];
-    const float len = glm::length(s);
-    return len > 0.0f ? s / len : h.geometricNormal;
-}
-
 // The largest extent of the points' projections on (ax, ay): the fitted frame's pixel is that
 // over resolution - 1 (core/bundle bundleFrameForPoints).
 float projectedExtent(const std::vector<ViewPoint>& points, const glm::vec3& ax,
@@ -297,6 +274,11 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
                              std::numeric_limits<float>::infinity());
 
             // The pixel's centre ray through the whole sphere; depths measured from x's depth.
+            // Every fragment is taken parallel to x's plane, nothing skipped by identity:
+            // skylight's rule exactly (its bundles carry no payload). Multibounce and bidir place
+            // fragments by their payload's normals and skip x's triangle; atlas walks by face bits:
+            // for them this is the same pixel-offset error measured with skylight's rule, an
+            // approximation.
             const glm::vec3 centrePoint = v.position - e;
             const float back = glm::length(centrePoint - centre) + radius * 1.01f;
             const std::vector<EmbreeScene::RayHit> hits =
