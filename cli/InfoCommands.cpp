@@ -3,6 +3,7 @@
 #include "cli/Commands.h"
 #include "image/ImageIO.h"
 #include "modes/Registry.h"
+#include "modes/SettingTrades.h"
 #include "scene/SceneLoader.h"
 #include "vk/Context.h"
 
@@ -73,6 +74,8 @@ void addPlanCommand(CLI::App& app, Action& action) {
             for (const PlannedPass& p : mode->plan(scene)) {
                 std::cout << (p.runs ? "  run   " : "  skip  ") << p.name << ": " << p.reason << "\n";
             }
+            // The same checks a render warns with, before any work (modes/SettingTrades.h).
+            for (const std::string& w : settingTrades(*mode, scene)) std::cout << "  warn  " << w << "\n";
             return 0;
         };
     });

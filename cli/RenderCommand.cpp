@@ -10,6 +10,7 @@
 #include "cli/OutputFiles.h"
 #include "modes/FrameSchedule.h"
 #include "modes/Registry.h"
+#include "modes/SettingTrades.h"
 #include "scene/SceneLoader.h"
 #include "vk/Context.h"
 
@@ -142,8 +143,10 @@ int runRender(const RenderOptions& o) {
         device = ctx->info().describe();
         std::cout << "device: " << device << "\n";
     }
-    // Once per render, before any work: what of the scene's light this mode leaves out.
+    // Once per render, before any work: what of the scene's light this mode leaves out, and what
+    // its settings trade on this scene (modes/SettingTrades.h).
     for (const std::string& w : lightsLeftOut(*mode, scene)) log::warn(w);
+    for (const std::string& w : settingTrades(*mode, scene)) log::warn(w);
     RenderRecord record{o.scene, o.mode, device, o.seed};
     for (std::uint32_t frame = 0; frame < schedule.frames; ++frame) {
         const std::string out = schedule.frames > 1 ? framePath(o.out, frame) : o.out;

@@ -58,6 +58,18 @@ struct PlannedPass {
     bool lightLeftOut = false;
 };
 
+// The settings whose accuracy depends on the scene, for the checks of modes/SettingTrades.h
+// (what a mode trades, said before rendering). Empty keys: the mode has no such setting.
+struct TradeSettings {
+    std::string shadowKey;               // shadow cubes of point and spot lights
+    std::uint32_t shadowResolution = 0;
+    std::string bundleKey;               // global ray-bundles
+    std::uint32_t bundleResolution = 0;
+    std::string fitKey;                  // the bundle frame's fit, when the mode lets it be set
+    bool fitVisible = false;             // frames fitted to the camera's visible points
+    bool floatBrdf = false;              // evaluates the BRDFs in the shaders' float
+};
+
 class Mode {
 public:
     virtual ~Mode() = default;
@@ -72,6 +84,8 @@ public:
     virtual PassTimes timings() const = 0;
     // The passes this mode runs for the scene given to setScene (or would, before it).
     virtual std::vector<PlannedPass> plan(const Scene& scene) const = 0;
+    // The settings modes/SettingTrades.h checks against the scene; none by default.
+    virtual TradeSettings trades() const { return {}; }
 };
 
 // One warning line per light the scene has and `mode` leaves out (its plan's lightLeftOut passes),

@@ -7,6 +7,7 @@
 #include "image/ImageIO.h"
 #include "image/Metrics.h"
 #include "modes/Registry.h"
+#include "modes/SettingTrades.h"
 #include "runner/FileUtil.h"
 #include "scene/SceneLoader.h"
 #include "vk/Context.h"
@@ -82,6 +83,7 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
     };
     const double setupSeconds = setUp();
     for (const std::string& w : lightsLeftOut(*mode, scene)) log::warn("task " + task.id + ": " + w);
+    for (const std::string& w : settingTrades(*mode, scene)) log::warn("task " + task.id + ": " + w);
 
     const RunEnvironment env = currentRunEnvironment();
     const std::string deviceName = modeEntry.needsGpu ? gpu->info().describe() : "";

@@ -533,4 +533,14 @@ PassTimes AtlasMode::timings() const {
     return t;
 }
 
+TradeSettings AtlasMode::trades() const {
+    TradeSettings t;
+    t.shadowKey = kShadowResolution;
+    t.shadowResolution = static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution));
+    t.bundleKey = kBundleResolution;
+    t.bundleResolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+    t.floatBrdf = true;
+    return t;
+}
+
 } // namespace bl

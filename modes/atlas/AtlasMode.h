@@ -155,6 +155,7 @@ public:
     const Settings& settings() const override { return mSettings; }
     PassTimes timings() const override;
     std::vector<PlannedPass> plan(const Scene& scene) const override;
+    TradeSettings trades() const override;
 
     // The reflected radiance of every texel side, weighted sum / total weight (rgb; index 2 * texel + side),
     // and the texels' emission: tests check the atlas itself (the furnace: every texel -> 2).

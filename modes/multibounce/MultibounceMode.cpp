@@ -360,4 +360,16 @@ ImageSet MultibounceMode::resolve() {
 
 PassTimes MultibounceMode::timings() const { return mGpu ? mGpu->timer.totals() : PassTimes{}; }
 
+TradeSettings MultibounceMode::trades() const {
+    TradeSettings t;
+    t.shadowKey = kShadowResolution;
+    t.shadowResolution = static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution));
+    // Frames over the scene's sphere, with no fit setting: a path's later vertices lie anywhere
+    // in the scene, so a frame fitted to the camera's points would miss them.
+    t.bundleKey = kBundleResolution;
+    t.bundleResolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+    t.floatBrdf = true;
+    return t;
+}
+
 } // namespace bl

@@ -195,4 +195,12 @@ ImageSet RasterMode::resolve() {
 
 PassTimes RasterMode::timings() const { return mGpu ? mGpu->timer.totals() : PassTimes{}; }
 
+TradeSettings RasterMode::trades() const {
+    TradeSettings t;
+    t.shadowKey = kShadowResolution;
+    t.shadowResolution = static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution));
+    t.floatBrdf = true;
+    return t;
+}
+
 } // namespace bl

@@ -41,6 +41,7 @@ public:
     const Settings& settings() const override { return mSettings; }
     PassTimes timings() const override;
     std::vector<PlannedPass> plan(const Scene& scene) const override;
+    TradeSettings trades() const override;
 
 private:
     struct Gpu;

@@ -298,4 +298,14 @@ PassTimes SkylightMode::timings() const {
     return t;
 }
 
+TradeSettings SkylightMode::trades() const {
+    TradeSettings t;
+    t.bundleKey = kBundleResolution;
+    t.bundleResolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+    t.fitKey = kFit;
+    t.fitVisible = mSettings.getString(kFit) == "visible";
+    t.floatBrdf = true;
+    return t;
+}
+
 } // namespace bl

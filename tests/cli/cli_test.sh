@@ -186,6 +186,24 @@ lights_left_out)
         --out "$out/p.exr" 2>"$out/point.txt" || fail "render failed"
     grep -q "left out" "$out/point.txt" && fail "a warning for a scene the mode renders whole"
     ;;
+setting_trades)
+    # A shadow cube too coarse for the box: said once at render time, with the setting that fixes it.
+    "$bl" render data/cornell-box/cornell-point.toml --mode raster --width 8 --height 8 --set shadow_resolution=16 \
+        --out "$out/r.exr" 2>"$out/stderr.txt" || fail "render failed"
+    [[ $(grep -c "raster: the 16^2 shadow cube of light 0 misses .*fix: shadow_resolution=" "$out/stderr.txt") -eq 1 ]] ||
+        { cat "$out/stderr.txt"; fail "no single warning for the coarse shadow cube"; }
+    # plan shows the same check; the defaults on the Cornell box trade nothing worth a word.
+    "$bl" plan data/cornell-box/cornell-point.toml --mode multibounce --set bundle_resolution=16 >"$out/plan.txt" ||
+        fail "plan failed"
+    grep -q "warn  multibounce: bundles of 16^2 pixels .*fix: bundle_resolution=" "$out/plan.txt" ||
+        { cat "$out/plan.txt"; fail "plan lacks the bundle check"; }
+    for m in raster multibounce bidir atlas; do
+        "$bl" plan data/cornell-box/cornell-point.toml --mode $m >"$out/$m.txt" || fail "plan $m failed"
+        grep -q "warn" "$out/$m.txt" && { cat "$out/$m.txt"; fail "a warning for $m at its defaults"; }
+    done
+    "$bl" plan data/cornell-box/cornell.toml --mode skylight >"$out/skylight.txt" || fail "plan skylight failed"
+    grep -q "warn" "$out/skylight.txt" && { cat "$out/skylight.txt"; fail "a warning for skylight at its defaults"; }
+    ;;
 validation_clean)
     "$bl" render data/external/sponza-point.toml --mode raster --width 96 --height 64 --validation \
         --set shadow_resolution=128 --out "$out/s.exr" 2>"$out/stderr.txt" || { cat "$out/stderr.txt"; fail "render failed"; }

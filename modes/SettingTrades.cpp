@@ -1,0 +1,426 @@
+#include "modes/SettingTrades.h"
+
+#include "modes/Mode.h"
+#include "reference/EmbreeScene.h"
+#include "scene/Scene.h"
+#include "scene/ScenePrecision.h"
+#include "scene/ShaderConversions.h"
+
+#include <shared/Camera.h>
+#include <shared/CubeFaces.h>
+#include <shared/Lights.h>
+#include <shared/Random.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace bl {
+
+namespace {
+
+// Primary rays per side of the grid the checks sample the camera's view with: 48^2 = 2304
+// points, so a check's standard error is a few tenths of a percent where a tenth of the points
+// disagree, well under kTradeTolerance / kTradeSigmas.
+constexpr std::uint32_t kViewGrid = 48;
+// Uniform directions per view point in the bundle check (9,216 queries at kViewGrid).
+constexpr std::uint32_t kBundleDirectionsPerPoint = 4;
+// The largest settings a fix may suggest. A shadow cube of 4096^2 texels holds 6 x 64 MiB of
+// distances (plus as much depth while rendering): beyond it the cube costs more than the scene.
+// A bundle of 2048^2 pixels needs 16 MiB of list heads alone per bundle and K times that in
+// multibounce: the pool caps of the modes refuse more long before.
+constexpr std::uint32_t kMaxShadowResolution = 4096;
+constexpr std::uint32_t kMaxBundleResolution = 2048;
+
+// The constants of the GPU code each replay mirrors (ShadowCubeLookup.glsl, Traversal.glsl).
+constexpr float kShadowRelativeBias = 1e-3f;
+constexpr float kShadowParallelCosine = 1e-6f;
+constexpr int kShadowPcfTaps = 4;
+constexpr float kMaxOwnSurfaceTangent = 12.0f;
+constexpr float kSubpixelGrid = 256.0f;
+
+float uniform01(std::uint32_t a, std::uint32_t b, std::uint32_t dimension) {
+    const std::uint32_t h =
+        shader::blHash(a ^ shader::blHash(b ^ shader::blHash(dimension + 0x9e3779b9u)));
+    return float(h >> 8) * (1.0f / 16777216.0f);
+}
+
+// Mean of differences d_i relative to the sum of exact values: error and standard error.
+struct RatioAccumulator {
+    double sumExact = 0.0, sumDiff = 0.0, sumDiff2 = 0.0;
+    std::uint64_t n = 0;
+    void add(double exact, double approx) {
+        const double d = approx - exact;
+        sumExact += exact;
+        sumDiff += d;
+        sumDiff2 += d * d;
+        ++n;
+    }
+    TradeError result() const {
+        TradeError e;
+        if (n < 2 || !(sumExact > 0.0))
+            return e;
+        const double mean = sumDiff / double(n);
+        const double var =
+            std::max(0.0, (sumDiff2 / double(n) - mean * mean)) * double(n) / double(n - 1);
+        e.error = sumDiff / sumExact;
+        e.stderr_ = std::sqrt(var / double(n)) * double(n) / sumExact;
+        return e;
+    }
+};
+
+// ShadowCubeLookup.glsl's blShadowFaceTexel.
+glm::vec2 faceTexel(const glm::vec3& d, std::uint32_t face, float res) {
+    glm::vec3 r, u, f;
+    shader::blCubeFaceBasis(face, r, u, f);
+    const float z = glm::dot(d, f);
+    const glm::vec2 xy = glm::vec2(glm::dot(d, r), glm::dot(d, u)) / z;
+    return glm::vec2(xy.x + 1.0f, 1.0f - xy.y) * (0.5f * res);
+}
+
+// The distance a shadow cube stores along a texel's centre ray: the nearest surface beyond the
+// light's clearance (ShadowCubePass renders no closer), +inf where nothing.
+float storedDistance(const EmbreeScene& rt, const glm::vec3& light, const glm::vec3& ray) {
+    const float clearance = rt.lightClearance();
+    SurfaceHit hit;
+    if (rt.intersect(light + clearance * ray, ray, std::numeric_limits<float>::infinity(), hit)) {
+        return hit.t + clearance;
+    }
+    return std::numeric_limits<float>::infinity();
+}
+
+// blShadowTap: texel `texel` of face (r, u, f) against the receiver plane through p (relative to
+// the light) with normal n (toward the light).
+float shadowTap(const EmbreeScene& rt, const glm::vec3& light, glm::ivec2 texel, const glm::vec3& r,
+                const glm::vec3& u, const glm::vec3& f, float res, const glm::vec3& p,
+                const glm::vec3& n) {
+    const glm::vec2 c = (glm::vec2(texel) + 0.5f) / res * 2.0f - 1.0f;
+    const glm::vec3 ray = glm::normalize(f + c.x * r - c.y * u);
+    const float denom = glm::dot(ray, n);
+    if (denom >= -kShadowParallelCosine)
+        return 1.0f;
+    const float receiver = glm::dot(p, n) / denom;
+    return storedDistance(rt, light, ray) >= receiver * (1.0f - kShadowRelativeBias) ? 1.0f : 0.0f;
+}
+
+// blShadowVisibilityTaps with 4 x 4 taps, each tap's stored distance traced along its centre ray.
+float pcfVisibility(const EmbreeScene& rt, const glm::vec3& light, std::uint32_t resolution,
+                    const glm::vec3& p, const glm::vec3& n) {
+    const float res = float(resolution);
+    const std::uint32_t face = shader::blCubeFaceOf(p);
+    glm::vec3 r, u, f;
+    shader::blCubeFaceBasis(face, r, u, f);
+    const glm::vec2 st = faceTexel(p, face, res);
+    const float centre = 0.5f * float(kShadowPcfTaps - 1);
+    float lit = 0.0f;
+    for (int j = 0; j < kShadowPcfTaps; ++j) {
+        for (int i = 0; i < kShadowPcfTaps; ++i) {
+            const glm::vec2 tap = st + glm::vec2(float(i) - centre, float(j) - centre);
+            if (tap.x >= 1.0f && tap.y >= 1.0f && tap.x < res - 1.0f && tap.y < res - 1.0f) {
+                lit += shadowTap(rt, light, glm::ivec2(glm::floor(tap)), r, u, f, res, p, n);
+                continue;
+            }
+            const glm::vec2 xy(tap.x / res * 2.0f - 1.0f, 1.0f - tap.y / res * 2.0f);
+            const glm::vec3 dir = f + xy.x * r + xy.y * u;
+            const std::uint32_t tapFace = shader::blCubeFaceOf(dir);
+            const glm::vec2 tapSt = tapFace == face ? tap : faceTexel(dir, tapFace, res);
+            const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(tapSt)), glm::ivec2(0),
+                                                glm::ivec2(int(resolution) - 1));
+            glm::vec3 tr, tu, tf;
+            shader::blCubeFaceBasis(tapFace, tr, tu, tf);
+            lit += shadowTap(rt, light, texel, tr, tu, tf, res, p, n);
+        }
+    }
+    return lit / float(kShadowPcfTaps * kShadowPcfTaps);
+}
+
+// Traversal.glsl's blBundleCrossing: the depth at which x's own ray (offset e from the centre ray)
+// crosses the plane with normal m through the centre ray's point at depth t.
+float crossing(const glm::vec3& omega, float t, const glm::vec3& e, const glm::vec3& m) {
+    const float c = glm::dot(m, omega);
+    const float rise = glm::dot(e, m);
+    const float limit = kMaxOwnSurfaceTangent * glm::length(e);
+    if (std::abs(rise) >= limit * std::abs(c))
+        return t - (rise * c >= 0.0f ? limit : -limit);
+    return t - rise / c;
+}
+
+// The largest extent of the points' projections on (ax, ay): the fitted frame's pixel is that
+// over resolution - 1 (core/bundle bundleFrameForPoints).
+float projectedExtent(const std::vector<ViewPoint>& points, const glm::vec3& ax,
+                      const glm::vec3& ay) {
+    glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+    for (const ViewPoint& v : points) {
+        const glm::vec2 q(glm::dot(v.position, ax), glm::dot(v.position, ay));
+        lo = glm::min(lo, q);
+        hi = glm::max(hi, q);
+    }
+    return std::max(hi.x - lo.x, hi.y - lo.y);
+}
+
+std::string percent(double x) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%+.1f %%", 100.0 * x);
+    return b;
+}
+
+std::string describe(const TradeError& e) {
+    char b[32];
+    std::snprintf(b, sizeof b, " (+- %.1f %%)", 100.0 * e.stderr_);
+    return percent(e.error) + b;
+}
+
+} // namespace
+
+bool TradeError::exceeds() const {
+    return std::abs(error) > kTradeTolerance + kTradeSigmas * stderr_;
+}
+bool TradeError::within() const {
+    return std::abs(error) <= kTradeTolerance;
+}
+
+std::vector<ViewPoint> viewPoints(const EmbreeScene& rt, const Scene& scene, std::uint32_t grid) {
+    const shader::GpuCamera cam = makeGpuCamera(scene.camera, 0.0, 1.0f);
+    const std::uint32_t gx = grid;
+    const std::uint32_t gy =
+        std::max(1u, std::uint32_t(std::lround(double(grid) * cam.height / cam.width)));
+    std::vector<ViewPoint> out;
+    out.reserve(std::size_t(gx) * gy);
+    for (std::uint32_t j = 0; j < gy; ++j) {
+        for (std::uint32_t i = 0; i < gx; ++i) {
+            const glm::vec2 pixel((float(i) + 0.5f) / float(gx) * cam.width,
+                                  (float(j) + 0.5f) / float(gy) * cam.height);
+            const glm::vec3 dir = shader::blCameraRayDirection(cam, pixel);
+            SurfaceHit hit;
+            if (!rt.intersect(cam.position, dir, std::numeric_limits<float>::infinity(), hit))
+                continue;
+            const glm::vec3 n = glm::dot(hit.geometricNormal, dir) > 0.0f ? -hit.geometricNormal
+                                                                          : hit.geometricNormal;
+            out.push_back({hit.position, n, hit.offsetScale, hit.mesh, hit.triangle});
+        }
+    }
+    return out;
+}
+
+TradeError shadowCubeError(const EmbreeScene& rt, const std::vector<ViewPoint>& points,
+                           std::uint32_t light, std::uint32_t resolution) {
+    const Light l = rt.scene().lightsAt(rt.time()).at(light);
+    const shader::GpuLight gpuLight = toGpuLight(l);
+    RatioAccumulator acc;
+    for (const ViewPoint& v : points) {
+        const glm::vec3 p = v.position - l.position;
+        const float r2 = glm::dot(p, p);
+        if (!(r2 > 0.0f))
+            continue;
+        const glm::vec3 fromLight = p / std::sqrt(r2);
+        // Two-sided: the side of the surface the light is on (the GPU lights only the viewer's
+        // side, which the exact and the cube answer alike).
+        const glm::vec3 n = glm::dot(v.normal, fromLight) < 0.0f ? v.normal : -v.normal;
+        if (glm::dot(v.normal, fromLight) >= 0.0f) {
+            acc.add(0.0, 0.0);
+            continue;
+        }
+        const double w =
+            double(shader::blLightProfile(gpuLight, fromLight)) * -glm::dot(n, fromLight) / r2;
+        if (!(w > 0.0)) {
+            acc.add(0.0, 0.0);
+            continue;
+        }
+        const bool exact = !rt.occludedFromLight(
+            EmbreeScene::offsetOrigin(v.position, n, v.offsetScale), l.position);
+        acc.add(exact ? w : 0.0, w * pcfVisibility(rt, l.position, resolution, p, n));
+    }
+    return acc.result();
+}
+
+TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPoint>& points,
+                                 std::uint32_t resolution, bool fitVisible,
+                                 std::uint32_t directionsPerPoint) {
+    const Bounds bounds = rt.scene().bounds();
+    const glm::vec3 centre = bounds.center();
+    const float radius = bounds.radius();
+    const float depthEpsilon = kRelativeClearance * radius;
+    RatioAccumulator acc;
+    for (std::uint32_t i = 0; i < points.size(); ++i) {
+        const ViewPoint& v = points[i];
+        for (std::uint32_t k = 0; k < directionsPerPoint; ++k) {
+            // omega uniform on the sphere, the frame's rotation about it uniform, and x's place in
+            // its pixel uniform (the grid's phase moves with every frame's rotation and fit).
+            const float z = 1.0f - 2.0f * uniform01(i, k, 0);
+            const float phi = 2.0f * shader::kPi * uniform01(i, k, 1);
+            const float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+            const glm::vec3 omega(s * std::cos(phi), s * std::sin(phi), z);
+            glm::vec3 ax = glm::normalize(glm::cross(
+                std::abs(omega.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0), omega));
+            glm::vec3 ay = glm::cross(omega, ax);
+            const float rot = 2.0f * shader::kPi * uniform01(i, k, 2);
+            const glm::vec3 rx = std::cos(rot) * ax + std::sin(rot) * ay;
+            ay = glm::cross(omega, rx);
+            ax = rx;
+            const float pixel = fitVisible
+                                    ? std::max(projectedExtent(points, ax, ay), 1e-6f * radius) /
+                                          float(resolution - 1)
+                                    : 2.0f * radius / float(resolution);
+            const glm::vec3 e =
+                (uniform01(i, k, 3) - 0.5f) * pixel * ax + (uniform01(i, k, 4) - 0.5f) * pixel * ay;
+
+            const float cosine = glm::dot(v.normal, omega);
+            const float dir = cosine >= 0.0f ? 1.0f : -1.0f;
+            const glm::vec3 d = dir * omega;
+            const double weight = std::abs(cosine);
+            const bool exact =
+                !rt.occluded(EmbreeScene::offsetOrigin(v.position, v.normal, v.offsetScale), d,
+                             std::numeric_limits<float>::infinity());
+
+            // The pixel's centre ray through the whole sphere; depths measured from x's depth.
+            // Every fragment is taken parallel to x's plane, nothing skipped by identity:
+            // skylight's rule exactly (its bundles carry no payload). Multibounce and bidir place
+            // fragments by their payload's normals and skip x's triangle; atlas walks by face bits:
+            // for them this is the same pixel-offset error measured with skylight's rule, an
+            // approximation.
+            const glm::vec3 centrePoint = v.position - e;
+            const float back = glm::length(centrePoint - centre) + radius * 1.01f;
+            const std::vector<EmbreeScene::RayHit> hits =
+                rt.allHits(centrePoint - back * omega, omega, 2.0f * back);
+            const float c = std::max(std::abs(cosine), 1.0f / kMaxOwnSurfaceTangent);
+            const float tangent =
+                std::min(std::sqrt(std::max(0.0f, 1.0f - c * c)) / c, kMaxOwnSurfaceTangent);
+            const float epsilon = depthEpsilon / c + pixel * tangent / kSubpixelGrid;
+            bool blocked = false;
+            for (const EmbreeScene::RayHit& h : hits) {
+                if (dir * crossing(omega, h.t - back, e, v.normal) > epsilon) {
+                    blocked = true;
+                    break;
+                }
+            }
+            acc.add(exact ? weight : 0.0, blocked ? 0.0 : weight);
+        }
+    }
+    return acc.result();
+}
+
+// A lobe cos^n(alpha) (Phong; Ashikhmin-Shirley's exponents alike) is evaluated from
+// c = cos(alpha) computed in float. Just below 1, floats lie 2^-24 apart, so c carries an
+// absolute error of about 2^-24 (one rounding of the dot product; the normalizations before it
+// add as much again), and c^n = exp(n ln c) turns an absolute error delta of c (~1) into the
+// relative error n delta of the lobe. The lobe stays within kTradeTolerance while
+// n 2^-24 <= 1 %, n <= 1.7e5. Check against the stress suite (tests/stress/known_failures.txt,
+// a glossy floor zoomed on the highlight): n = 1e4 (0.06 % predicted) reads 0.9997 of the
+// reference in every GPU mode, n = 1e6 (6 % predicted) 0.961-0.965.
+double glossyLobeError(double exponent) {
+    return exponent * std::ldexp(1.0, -24);
+}
+
+std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
+    const TradeSettings t = mode.trades();
+    const std::string name(mode.name());
+    std::vector<std::string> out;
+
+    if (t.floatBrdf) {
+        for (const Material& m : scene.materials) {
+            const double n = std::max(m.exponentU, m.exponentV);
+            if (!m.glossy() || !(glossyLobeError(n) > kTradeTolerance))
+                continue;
+            char b[64];
+            std::snprintf(b, sizeof b, "%g", n);
+            out.push_back(name + ": material '" + m.name + "' has a glossy exponent of " + b +
+                          ", sharper than this mode's float BRDF evaluation resolves (about " +
+                          percent(-glossyLobeError(n)).substr(1) +
+                          " error on the lobe, tolerance 1 %); " +
+                          "fix: an exponent of at most 1.7e5 (a sharper lobe looks the same at any "
+                          "image size)");
+        }
+    }
+
+    const bool shadows = !t.shadowKey.empty() && !scene.lights.empty();
+    const bool bundles = !t.bundleKey.empty();
+    if (!shadows && !bundles)
+        return out;
+    bool anyTriangles = false;
+    for (const Mesh& m : scene.meshes)
+        anyTriangles = anyTriangles || !m.triangles.empty();
+    if (!anyTriangles)
+        return out;
+
+    const EmbreeScene rt(scene, 0.0);
+    const std::vector<ViewPoint> points = viewPoints(rt, scene, kViewGrid);
+    if (points.size() < 2)
+        return out;
+
+    if (shadows) {
+        for (std::uint32_t l = 0; l < scene.lights.size(); ++l) {
+            const TradeError e = shadowCubeError(rt, points, l, t.shadowResolution);
+            if (!e.exceeds())
+                continue;
+            std::string line =
+                name + ": the " + std::to_string(t.shadowResolution) + "^2 shadow cube of light " +
+                std::to_string(l) + " misses " + describe(e) +
+                " of its direct light at the points the camera sees (4x4 PCF against exact " +
+                "shadow rays; tolerance 1 %); ";
+            std::string fix;
+            for (std::uint32_t r = t.shadowResolution * 2; r <= kMaxShadowResolution && fix.empty();
+                 r *= 2) {
+                const TradeError f = shadowCubeError(rt, points, l, r);
+                if (f.within())
+                    fix =
+                        "fix: " + t.shadowKey + "=" + std::to_string(r) + " (" + describe(f) + ")";
+            }
+            if (fix.empty()) {
+                fix = "even " + t.shadowKey + "=" + std::to_string(kMaxShadowResolution) +
+                      " does not bring it under";
+            }
+            out.push_back(line + fix);
+        }
+    }
+
+    if (bundles) {
+        const TradeError e = bundleVisibilityError(rt, points, t.bundleResolution, t.fitVisible,
+                                                   kBundleDirectionsPerPoint);
+        if (e.exceeds()) {
+            std::string line =
+                name + ": bundles of " + std::to_string(t.bundleResolution) + "^2 pixels" +
+                (t.fitVisible ? " fitted to the visible points"
+                              : " over the scene's bounding sphere") +
+                " misjudge the visibility of the points the camera sees by " + describe(e) +
+                " (cosine-weighted, against exact rays; tolerance 1 %): their pixel is too coarse "
+                "for " +
+                "the objects in view; ";
+            std::string fix;
+            const bool canFit = !t.fitKey.empty() && !t.fitVisible;
+            for (std::uint32_t r = t.bundleResolution; r <= kMaxBundleResolution && fix.empty();
+                 r *= 2) {
+                if (canFit) {
+                    const TradeError f =
+                        bundleVisibilityError(rt, points, r, true, kBundleDirectionsPerPoint);
+                    if (f.within()) {
+                        fix = "fix: " + t.fitKey + "=visible" +
+                              (r != t.bundleResolution ? " " + t.bundleKey + "=" + std::to_string(r)
+                                                       : std::string()) +
+                              " (" + describe(f) + ")";
+                        break;
+                    }
+                }
+                if (r == t.bundleResolution)
+                    continue;
+                const TradeError f =
+                    bundleVisibilityError(rt, points, r, t.fitVisible, kBundleDirectionsPerPoint);
+                if (f.within())
+                    fix =
+                        "fix: " + t.bundleKey + "=" + std::to_string(r) + " (" + describe(f) + ")";
+            }
+            if (fix.empty()) {
+                fix = "even " + t.bundleKey + "=" + std::to_string(kMaxBundleResolution) +
+                      (canFit ? " with " + t.fitKey + "=visible" : std::string()) +
+                      " does not bring it under";
+            }
+            if (t.fitKey.empty())
+                fix += " (this mode's frames cover the whole scene: its paths leave the visible "
+                       "points)";
+            out.push_back(line + fix);
+        }
+    }
+    return out;
+}
+
+} // namespace bl

@@ -1,0 +1,83 @@
+// What a mode's settings trade on a given scene, said before rendering (issue 19 item 8).
+//
+// Three checks, each a criterion with a stated tolerance, evaluated on the host (Embree, no GPU)
+// from the points the camera sees (a coarse grid of primary rays):
+//   shadow cube   the 4x4-PCF receiver-plane lookup of shaders/gpu/ShadowCubeLookup.glsl, replayed
+//                 with rays along each tap's texel centre ray, against exact shadow rays: the
+//                 relative error of the visible points' direct irradiance (shadowCubeError).
+//   bundle pixel  the bundle query of shaders/bundle/Traversal.glsl (blBundleSurfaceNearest without
+//                 payload, as skylight: the fragments of the pixel's centre ray, up to 0.71 px
+//                 beside x, placed where x's own ray crosses x's plane through them), replayed with
+//                 rays, against exact rays from x: the relative error of the visible points'
+//                 cosine-weighted visibility (ambient occlusion) over uniform directions
+//                 (bundleVisibilityError).
+//   glossy lobe   the float evaluation of a Phong / Ashikhmin-Shirley lobe (glossyLobeError).
+// A check warns when its error exceeds kTradeTolerance by more than its own noise, and names the
+// setting and the value that brings it under (or says none up to the largest it tries).
+// A suggested fix is the first value tried (doubling) whose estimate lies within the tolerance.
+// Checked against lavapipe renders (commands in the commit that added this): Sibenik, raster's
+// direct light vs the reference at 96x64: -3.4 / -1.6 / -0.7 % at 512 / 1024 / 2048 texels, the
+// shadow check -3.1 / -1.5 / -0.6 % (+- 0.6 / 0.3 / 0.1). Multibounce and bidir also reach the
+// scene's other points along paths; the checks sample only what the camera sees.
+// Drivers (render, the experiment runner, `bundlelab plan`) print settingTrades' lines once.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace bl {
+
+struct Scene;
+class Mode;
+class EmbreeScene;
+
+// The error a check tolerates before it warns: 1 % of the quantity it checks. The project's
+// convergence tests judge image means at 1-2 % (tests/modes/*), the stress suite at 2 %: a trade
+// below 1 % hides in their noise, one above it is what a user comparing against a reference
+// would see first. Each check also needs its estimate to stand kTradeSigmas standard errors clear
+// of the tolerance, so that its own sampling noise cannot raise a warning.
+inline constexpr double kTradeTolerance = 0.01;
+inline constexpr double kTradeSigmas = 3.0;
+
+// The visible points of the scene's camera (time 0): the first hits of a grid x grid set of
+// primary rays through pixel centres of a grid at the camera's aspect.
+struct ViewPoint {
+    glm::vec3 position;
+    glm::vec3 normal; // geometric, unit, toward the camera
+    float offsetScale;
+    std::uint32_t mesh;
+    std::uint32_t triangle;
+};
+std::vector<ViewPoint> viewPoints(const EmbreeScene& rt, const Scene& scene, std::uint32_t grid);
+
+// An estimate and its standard error.
+struct TradeError {
+    double error = 0.0; // relative: (approximation - exact) / exact
+    double stderr_ = 0.0;
+    bool exceeds() const; // |error| > kTradeTolerance + kTradeSigmas * stderr_: warn
+    bool within() const;  // |error| <= kTradeTolerance: a setting suggested as the fix
+};
+
+// Relative error of the direct irradiance from light `light` (scene.lights[light], time 0) at the
+// view points with a shadow cube of `resolution` texels a side, against exact shadow rays.
+TradeError shadowCubeError(const EmbreeScene& rt, const std::vector<ViewPoint>& points,
+                           std::uint32_t light, std::uint32_t resolution);
+
+// Relative error of the cosine-weighted visibility of the view points over `directionsPerPoint`
+// uniform directions each, answered by a bundle of `resolution` pixels a side (frame over the
+// scene's bounding sphere, or fitted to the view points when `fitVisible`), against exact rays.
+TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPoint>& points,
+                                 std::uint32_t resolution, bool fitVisible,
+                                 std::uint32_t directionsPerPoint);
+
+// The relative error of a lobe of exponent n evaluated in float: n * 2^-24 (derivation in the
+// .cpp).
+double glossyLobeError(double exponent);
+
+// The warning lines (empty: nothing to say) for `mode` on `scene`, with the fix for each.
+std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene);
+
+} // namespace bl

@@ -1,0 +1,118 @@
+// The criteria of modes/SettingTrades.h on scenes whose answer is known: a plane has nothing a
+// shadow cube or a bundle can get wrong; a small box on it has creases and an outline that coarse
+// settings cannot resolve, and fine ones can. Host code only (Embree), no device.
+#include "modes/SettingTrades.h"
+#include "modes/Mode.h"
+#include "modes/Registry.h"
+#include "reference/EmbreeScene.h"
+#include "support/AnalyticScenes.h"
+
+#include <gtest/gtest.h>
+
+using namespace bl;
+
+namespace {
+
+// An axis-aligned box [lo, hi], faces outward (counter-clockwise seen from outside).
+Mesh makeBox(glm::vec3 lo, glm::vec3 hi, std::uint32_t material) {
+    Mesh m;
+    m.name = "box";
+    auto corner = [&](int i) {
+        return glm::vec3((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+    };
+    const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    for (const auto& q : quads) { // four vertices of its own per face: flat normals
+        const auto base = static_cast<std::uint32_t>(m.positions.size());
+        const glm::vec3 n =
+            glm::normalize(glm::cross(corner(q[1]) - corner(q[0]), corner(q[2]) - corner(q[0])));
+        for (int c : q) {
+            m.positions.push_back(corner(c));
+            m.normals.push_back(n);
+        }
+        m.triangles.push_back({base, base + 1, base + 2});
+        m.triangles.push_back({base, base + 2, base + 3});
+    }
+    m.material = material;
+    return m;
+}
+
+// pointLightOverPlane (h = 1, a 8 x 8 floor) with a box of side `side` on the floor beside the
+// light's foot, the camera looking at the box.
+Scene boxOnPlane(float side) {
+    Scene s = test::pointLightOverPlane(0.5f, 1.0f, 1.0f, 64);
+    s.meshes.push_back(
+        makeBox(glm::vec3(0.2f, 0.0f, 0.2f), glm::vec3(0.2f + side, side, 0.2f + side), 0));
+    s.camera.pose.target = glm::vec3(0.2f + 0.5f * side, 0.0f, 0.2f + 0.5f * side);
+    s.camera.pose.position = s.camera.pose.target + glm::vec3(0.5f, 1.5f, 1.0f) * (2.0f * side);
+    return s;
+}
+
+} // namespace
+
+TEST(SettingTrades, PlaneHasNothingToTrade) {
+    const Scene s = test::pointLightOverPlane(0.5f, 1.0f, 1.0f, 64);
+    const EmbreeScene rt(s, 0.0);
+    const std::vector<ViewPoint> points = viewPoints(rt, s, 32);
+    ASSERT_GT(points.size(), 500u);
+    // A planar receiver never shadows itself (receiver-plane test), and a bundle's fragments of
+    // x's own plane cross x's ray at x: both exact at any resolution.
+    for (std::uint32_t r : {8u, 512u}) {
+        EXPECT_EQ(shadowCubeError(rt, points, 0, r).error, 0.0) << r;
+        // (to float rounding of the replay's depths at grazing directions)
+        EXPECT_LT(std::abs(bundleVisibilityError(rt, points, r, false, 2).error),
+                  0.2 * kTradeTolerance)
+            << r;
+    }
+}
+
+TEST(SettingTrades, ShadowCubeErrorShrinksWithResolution) {
+    const Scene s = boxOnPlane(0.5f);
+    const EmbreeScene rt(s, 0.0);
+    const std::vector<ViewPoint> points = viewPoints(rt, s, 48);
+    const TradeError coarse = shadowCubeError(rt, points, 0, 8);
+    const TradeError fine = shadowCubeError(rt, points, 0, 2048);
+    EXPECT_TRUE(coarse.exceeds()) << coarse.error << " +- " << coarse.stderr_;
+    EXPECT_TRUE(fine.within()) << fine.error;
+    EXPECT_LT(std::abs(fine.error), std::abs(coarse.error));
+}
+
+TEST(SettingTrades, BundlePixelMustResolveTheObjectsInView) {
+    // A 5 cm box on an 8 m floor: the floor sets the sphere, so a 64^2 bundle's pixel (18 cm)
+    // is larger than the box (36 cm at 32^2); fitted to what the camera sees (about 1 m) it is 1.6
+    // cm.
+    const Scene s = boxOnPlane(0.05f);
+    const EmbreeScene rt(s, 0.0);
+    const std::vector<ViewPoint> points = viewPoints(rt, s, 48);
+    const TradeError sphere = bundleVisibilityError(rt, points, 32, false, 4);
+    const TradeError visible = bundleVisibilityError(rt, points, 512, true, 4);
+    EXPECT_TRUE(sphere.exceeds()) << sphere.error << " +- " << sphere.stderr_;
+    EXPECT_TRUE(visible.within()) << visible.error << " +- " << visible.stderr_;
+}
+
+TEST(SettingTrades, GlossyLobeFloatLimit) {
+    EXPECT_LT(glossyLobeError(1e4), kTradeTolerance); // stress phong-1e4: 0.9997 of the reference
+    EXPECT_GT(glossyLobeError(1e6), 5.0 * kTradeTolerance); // stress phong-1e6: 0.961-0.965
+    EXPECT_NEAR(glossyLobeError(1.6777216e5), kTradeTolerance, 1e-9);
+}
+
+TEST(SettingTrades, ModesWarnWithTheSettingThatFixesIt) {
+    Scene s = boxOnPlane(0.5f);
+    s.materials[0].specular = glm::vec3(0.5f);
+    s.materials[0].exponentU = s.materials[0].exponentV = 1e6f;
+    const std::vector<std::string> coarse =
+        settingTrades(*createMode("raster", {"shadow_resolution=16"}), s);
+    bool shadowFix = false, glossy = false;
+    for (const std::string& w : coarse) {
+        shadowFix = shadowFix || w.find("fix: shadow_resolution=") != std::string::npos;
+        glossy = glossy ||
+                 (w.find("'plane'") != std::string::npos && w.find("1e+06") != std::string::npos);
+    }
+    EXPECT_TRUE(shadowFix);
+    EXPECT_TRUE(glossy);
+
+    s.materials[0].exponentU = s.materials[0].exponentV = 100.0f;
+    EXPECT_TRUE(settingTrades(*createMode("raster", {"shadow_resolution=2048"}), s).empty());
+    // The reference evaluates in its own precision and has no cubes or bundles: nothing to say.
+    EXPECT_TRUE(settingTrades(*createMode("reference", {}), s).empty());
+}
