@@ -67,7 +67,6 @@ struct TradeSettings {
     std::uint32_t bundleResolution = 0;
     std::string fitKey;                  // the bundle frame's fit, when the mode lets it be set
     bool fitVisible = false;             // frames fitted to the camera's visible points
-    bool floatBrdf = false;              // evaluates the BRDFs in the shaders' float
 };
 
 class Mode {

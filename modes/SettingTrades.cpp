@@ -300,38 +300,10 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
     return acc.result();
 }
 
-// A lobe cos^n(alpha) (Phong; Ashikhmin-Shirley's exponents alike) is evaluated from
-// c = cos(alpha) computed in float. Just below 1, floats lie 2^-24 apart, so c carries an
-// absolute error of about 2^-24 (one rounding of the dot product; the normalizations before it
-// add as much again), and c^n = exp(n ln c) turns an absolute error delta of c (~1) into the
-// relative error n delta of the lobe. The lobe stays within kTradeTolerance while
-// n 2^-24 <= 1 %, n <= 1.7e5. Check against the stress suite (tests/stress/known_failures.txt,
-// a glossy floor zoomed on the highlight): n = 1e4 (0.06 % predicted) reads 0.9997 of the
-// reference in every GPU mode, n = 1e6 (6 % predicted) 0.961-0.965.
-double glossyLobeError(double exponent) {
-    return exponent * std::ldexp(1.0, -24);
-}
-
 std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
     const TradeSettings t = mode.trades();
     const std::string name(mode.name());
     std::vector<std::string> out;
-
-    if (t.floatBrdf) {
-        for (const Material& m : scene.materials) {
-            const double n = std::max(m.exponentU, m.exponentV);
-            if (!m.glossy() || !(glossyLobeError(n) > kTradeTolerance))
-                continue;
-            char b[64];
-            std::snprintf(b, sizeof b, "%g", n);
-            out.push_back(name + ": material '" + m.name + "' has a glossy exponent of " + b +
-                          ", sharper than this mode's float BRDF evaluation resolves (about " +
-                          percent(-glossyLobeError(n)).substr(1) +
-                          " error on the lobe, tolerance 1 %); " +
-                          "fix: an exponent of at most 1.7e5 (a sharper lobe looks the same at any "
-                          "image size)");
-        }
-    }
 
     const bool shadows = !t.shadowKey.empty() && !scene.lights.empty();
     const bool bundles = !t.bundleKey.empty();

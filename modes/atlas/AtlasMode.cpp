@@ -539,7 +539,6 @@ TradeSettings AtlasMode::trades() const {
     t.shadowResolution = static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution));
     t.bundleKey = kBundleResolution;
     t.bundleResolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
-    t.floatBrdf = true;
     return t;
 }
 

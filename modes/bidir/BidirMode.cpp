@@ -573,7 +573,6 @@ TradeSettings BidirMode::trades() const {
     t.bundleResolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
     t.fitKey = kFit;
     t.fitVisible = mSettings.getString(kFit) == "visible";
-    t.floatBrdf = true;
     return t;
 }
 

@@ -368,7 +368,6 @@ TradeSettings MultibounceMode::trades() const {
     // in the scene, so a frame fitted to the camera's points would miss them.
     t.bundleKey = kBundleResolution;
     t.bundleResolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
-    t.floatBrdf = true;
     return t;
 }
 

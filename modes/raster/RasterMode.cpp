@@ -199,7 +199,6 @@ TradeSettings RasterMode::trades() const {
     TradeSettings t;
     t.shadowKey = kShadowResolution;
     t.shadowResolution = static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution));
-    t.floatBrdf = true;
     return t;
 }
 

@@ -304,7 +304,6 @@ TradeSettings SkylightMode::trades() const {
     t.bundleResolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
     t.fitKey = kFit;
     t.fitVisible = mSettings.getString(kFit) == "visible";
-    t.floatBrdf = true;
     return t;
 }
 
