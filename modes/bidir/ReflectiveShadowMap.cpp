@@ -151,7 +151,11 @@ std::vector<shader::BidirVpl> ReflectiveShadowMap::sample(std::uint64_t first, s
                 shader::blCubeFaceBasis(face, r, u, f);
                 Camera camera;
                 camera.pose.position = lights[l].position;
-                camera.pose.target = lights[l].position + f;
+                // The target one scene radius out along f, not one unit: f is a coordinate axis, so
+                // target - position keeps exactly f's direction, while position + f vanished in
+                // float's spacing beyond 2^24 (scenes scaled by 1e5 and more: an empty RSM, every
+                // VPL lost).
+                camera.pose.target = lights[l].position + f * mScene->radius();
                 camera.pose.up = u;
                 camera.fovDegrees = 90.0f;
                 camera.fovAxis = FovAxis::X;
