@@ -255,6 +255,41 @@ std::vector<std::pair<std::size_t, std::size_t>> coverTexels(const std::vector<F
     return uncovered;
 }
 
+// Charts of their own for sub-texel triangles cost texels in proportion to the triangles' extent,
+// not their area: a scanned or detailed model's small triangles take a few pages (Sibenik and Sponza
+// at 512^2: about 5 pages by the estimate below, the bunny 1), a floor of 20,000 slivers of aspect
+// 1e4 hundreds (308 at 128^2) and a 1M-triangle floor thousands, where every such texel sees only
+// its own triangle's few hits and placing them one by one takes minutes. Past
+// kMaxSingleChartPages times the larger of a page and the rest of the scene's charts (a budget of
+// time and memory per iteration, well above what the real scenes need), refused up front with the
+// figures. A single's footprint is its bounding box at the atlas density plus its padding (an upper
+// bound on the mask the packer places; about twice it for slivers).
+constexpr double kMaxSingleChartPages = 16.0;
+
+void refuseOutweighingSingles(const std::vector<FlatChart>& singles, float density, const AtlasOptions& options,
+                              std::size_t occupied, int width, int height, std::size_t triangles) {
+    double needed = 0.0;
+    for (const FlatChart& c : singles) {
+        glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+        for (const glm::vec2& q : c.uv) {
+            lo = glm::min(lo, q);
+            hi = glm::max(hi, q);
+        }
+        const glm::vec2 texels = glm::ceil((hi - lo) * density) + 1.0f + 2.0f * float(options.padding);
+        needed += double(texels.x) * double(texels.y);
+    }
+    const double page = double(width) * double(height);
+    if (needed > kMaxSingleChartPages * std::max(double(occupied), page)) {
+        throw Error("atlas: " + std::to_string(singles.size()) + " of the scene's " + std::to_string(triangles) +
+                    " triangles are too thin or too small for a texel of their own at atlas_resolution " +
+                    std::to_string(options.size) + " (slivers, or triangles crowded within a texel); charts of their "
+                    "own would need up to about " + std::to_string(std::llround(needed / page)) + " pages (" +
+                    std::to_string(std::llround(needed)) + " texels), more than " + std::to_string(int(kMaxSingleChartPages)) +
+                    " times the rest of the scene's charts (" + std::to_string(occupied) + ") or a page: remesh them into fewer, fatter triangles, or raise "
+                    "atlas_resolution until they own texels");
+    }
+}
+
 } // namespace
 
 Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
@@ -312,6 +347,7 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
         }
         std::erase_if(atlas.charts, [](const FlatChart& c) { return c.faces.empty(); });
         orientCharts(singles);
+        refuseOutweighingSingles(singles, density, options, occupied, width, height, st.triangles);
         for (FlatChart& single : singles) {
             glm::vec2 offset;
             int turns = 0;

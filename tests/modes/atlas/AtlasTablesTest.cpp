@@ -1,11 +1,13 @@
 // The exact texel areas of mode atlas (modes/atlas/AtlasTables.h): the clipping against known
 // areas, and the sum over texels against the scene's surface area.
 #include "atlas/AtlasLink.h"
+#include "base/Error.h"
 #include "modes/atlas/AtlasTables.h"
 #include "scene/SceneLoader.h"
 #include "support/TestFiles.h"
 
 #include <cstdio>
+#include <string>
 #include <gtest/gtest.h>
 
 using namespace bl;
@@ -44,28 +46,25 @@ TEST(AtlasTables, TexelAreasSumToTheSceneArea) {
     EXPECT_EQ(t.triangles.size(), link.indices.size() / 3);
 }
 
-// Every triangle gets into the atlas, even where its texels are too coarse: a patch of 200 triangles
-// a fraction of a texel wide beside a large quad (which sets the density of a 16^2 atlas) finds
-// too few texels for its triangles, and their single-triangle charts no room on the first page;
-// they go onto further pages (the generator dropped them once, and the atlas link then refused the
-// scene: Sponza, Sibenik and the bunny at 512^2).
-TEST(AtlasTables, CrowdedTrianglesOpenPages) {
+namespace {
+// A patch of cells x cells squares (two triangles each) 0.02 wide, a fraction of a texel, beside a
+// 20 x 20 quad that sets the density of the atlas.
+Scene crowdBesideQuad(int cells) {
     Scene s;
     s.materials.push_back(Material{});
     Mesh m;
     m.name = "crowd";
-    constexpr int kCells = 10;
-    for (int j = 0; j <= kCells; ++j) {
-        for (int i = 0; i <= kCells; ++i) {
+    for (int j = 0; j <= cells; ++j) {
+        for (int i = 0; i <= cells; ++i) {
             m.positions.push_back({0.02f * float(i), 0.02f * float(j), 1.0f});
             m.normals.push_back({0.0f, 0.0f, 1.0f});
         }
     }
-    for (int j = 0; j < kCells; ++j) {
-        for (int i = 0; i < kCells; ++i) {
-            const auto v = std::uint32_t(j * (kCells + 1) + i);
-            m.triangles.push_back({v, v + 1, v + kCells + 2});
-            m.triangles.push_back({v, v + kCells + 2, v + kCells + 1});
+    for (int j = 0; j < cells; ++j) {
+        for (int i = 0; i < cells; ++i) {
+            const auto v = std::uint32_t(j * (cells + 1) + i);
+            m.triangles.push_back({v, v + 1, v + std::uint32_t(cells) + 2});
+            m.triangles.push_back({v, v + std::uint32_t(cells) + 2, v + std::uint32_t(cells) + 1});
         }
     }
     const auto base = std::uint32_t(m.positions.size());
@@ -74,8 +73,18 @@ TEST(AtlasTables, CrowdedTrianglesOpenPages) {
     m.triangles.push_back({base, base + 1, base + 2});
     m.triangles.push_back({base, base + 2, base + 3});
     s.meshes.push_back(m);
+    return s;
+}
+} // namespace
+
+// Every triangle gets into the atlas, even where its texels are too coarse: 72 triangles a fraction
+// of a texel wide find too few texels, and their single-triangle charts no room on the first page;
+// they go onto further pages (the generator dropped them once, and the atlas link then refused the
+// scene: Sponza, Sibenik and the bunny at 512^2).
+TEST(AtlasTables, CrowdedTrianglesOpenPages) {
+    const Scene s = crowdBesideQuad(6);
     atlas::AtlasOptions options;
-    options.size = 16;
+    options.size = 64;
     const atlas::Atlas a = atlas::buildAtlas(s, options);
     std::size_t inAtlas = 0;
     for (const auto& sources : a.triangleSources) inAtlas += sources.size();
@@ -84,4 +93,20 @@ TEST(AtlasTables, CrowdedTrianglesOpenPages) {
     EXPECT_EQ(inAtlas, s.triangleCount());
     EXPECT_GT(a.maps.pages, 1);
     EXPECT_NO_THROW(atlas::linkAtlas(s, a));
+}
+
+// Where such charts would outweigh the atlas many times over (200 sub-texel triangles in a 16^2
+// atlas: up to 28 pages for 0.01% of the area, past the budget of 16; the stress suite's sliver
+// floors: hundreds of pages and minutes of packing), the atlas refuses up front and says what to do.
+TEST(AtlasTables, OutweighingSubTexelTrianglesAreRefused) {
+    atlas::AtlasOptions options;
+    options.size = 16;
+    try {
+        atlas::buildAtlas(crowdBesideQuad(10), options);
+        FAIL() << "no refusal";
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find(" of the scene's 202 triangles are too thin or too small"), std::string::npos) << what;
+        EXPECT_NE(what.find("remesh"), std::string::npos) << what;
+    }
 }
