@@ -45,9 +45,9 @@ VkDeviceSize CameraPass::bytesPerPixel(std::uint32_t layers) {
     return GBufferPass::kBytesPerPixel + Accumulator::bytesPerPixel(layers);
 }
 
-CameraSample CameraPass::sample(std::uint32_t k, bool jitter, double time) const {
+CameraSample CameraPass::sample(std::uint32_t k, bool jitter, double time, std::uint64_t seed) const {
     CameraSample s;
-    s.samplePosition = pixelSamplePosition(k, jitter);
+    s.samplePosition = pixelSamplePosition(k, jitter, seed);
     s.jitterNdc = (s.samplePosition - 0.5f) * glm::vec2(2.0f / float(width()), 2.0f / float(height()));
     s.camera = makeGpuCamera(mScene->scene().camera, time, mScene->cameraNear());
     s.time = time;

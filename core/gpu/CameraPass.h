@@ -31,8 +31,8 @@ public:
     static VkDeviceSize bytesPerPixel(std::uint32_t layers);
 
     // Iteration k's sample at scene `time`: the pixel centre without jitter, else k's point of the
-    // progressive box filter.
-    CameraSample sample(std::uint32_t k, bool jitter, double time) const;
+    // progressive box filter, shifted by the run's seed (core/sampling/PixelSamples.h).
+    CameraSample sample(std::uint32_t k, bool jitter, double time, std::uint64_t seed) const;
 
     // Records the G-buffer of `s` (its camera is written in the command stream).
     void record(VkCommandBuffer cmd, const CameraSample& s, vk::GpuTimer* timer);

@@ -34,7 +34,7 @@ shader::AtlasDirectPush AtlasMode::glossyPush() const {
 // invocation per pixel.
 void AtlasMode::recordGather(VkCommandBuffer cmd, double weight) {
     Gpu& g = *mGpu;
-    const gpu::CameraSample sample = g.camera->sample(mIterations, true, mTime);
+    const gpu::CameraSample sample = g.camera->sample(mIterations, true, mTime, mSeed);
     g.camera->record(cmd, sample, &g.timer);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     shader::AtlasGatherPush push{};

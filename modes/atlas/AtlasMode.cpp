@@ -358,6 +358,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
                                                    static_cast<std::uint32_t>(info.seed));
     }
     mTime = info.time;
+    mSeed = info.seed;
     const auto maxSegments = static_cast<std::uint32_t>(mSettings.getInt(kMaxSegments));
     if (bounce() && maxSegments == 1) {
         ++mIterations; // emitters only: nothing is reflected

@@ -198,6 +198,7 @@ private:
     double mIndirectWeight = 0.0;
     std::uint32_t mPass = 1;   // transfer = bounce: the pass (bounce) under way, 1-based
     double mTime = 0.0; // scene time of the last direction: the view renders the scene there
+    std::uint64_t mSeed = 0; // run seed of the last direction: the view's pixel jitter follows it
     std::optional<double> mSolutionTime; // scene time of the geometry and lights the atlas holds
 };
 

@@ -46,7 +46,7 @@ ImageSet AtlasMode::resolve() {
         push.indirectScale = mIndirectWeight > 0.0 ? float(1.0 / mIndirectWeight) : 0.0f;
     }
     for (std::uint32_t k = 0; k < samples; ++k) {
-        const gpu::CameraSample sample = g.camera->sample(k, samples > 1, mTime);
+        const gpu::CameraSample sample = g.camera->sample(k, samples > 1, mTime, mSeed);
         push.samplePosition = sample.samplePosition;
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);

@@ -430,7 +430,7 @@ void BidirMode::iterate(const IterationInfo& info) {
                                                           static_cast<std::uint32_t>(info.seed));
     }
     // The G-buffer first: fit = visible fits this frame's bundles to the points it sees.
-    const gpu::CameraSample sample = mInterleave->cameraSample(g.camera->sample(mIterations, true, info.time),
+    const gpu::CameraSample sample = mInterleave->cameraSample(g.camera->sample(mIterations, true, info.time, info.seed),
                                                                g.camera->width(), g.camera->height());
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);

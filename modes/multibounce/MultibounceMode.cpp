@@ -285,7 +285,7 @@ void MultibounceMode::iterate(const IterationInfo& info) {
     buildBundles(info);
 
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
-    const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time);
+    const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time, info.seed);
     // Static scenes need their shadow maps once; animated ones whenever the time changes.
     const bool renderShadows = g.shadows->lightCount() > 0 &&
                                (!mShadowTime || (g.scene->features().animated && *mShadowTime != info.time));

@@ -122,7 +122,7 @@ void RasterMode::iterate(const IterationInfo& info) {
     Gpu& g = *mGpu;
     const std::uint32_t width = g.camera->width();
     const std::uint32_t height = g.camera->height();
-    const gpu::CameraSample sample = g.camera->sample(mIterations, mSettings.getBool(kJitter), info.time);
+    const gpu::CameraSample sample = g.camera->sample(mIterations, mSettings.getBool(kJitter), info.time, info.seed);
     // Static scenes need their shadow maps once; animated ones whenever the time changes.
     const bool renderShadows = !mShadowTime || (g.scene->features().animated && *mShadowTime != info.time);
     if (renderShadows) {

@@ -187,7 +187,7 @@ void SkylightMode::iterate(const IterationInfo& info) {
     const auto reuse = static_cast<std::uint32_t>(mSettings.getInt(kGBufferReuse));
     const bool freshGBuffer = !g.gbufferSample || mIterations % reuse == 0 || g.gbufferSample->time != info.time;
     if (freshGBuffer) {
-        g.gbufferSample = g.camera->sample(mIterations / reuse, true, info.time);
+        g.gbufferSample = g.camera->sample(mIterations / reuse, true, info.time, info.seed);
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
             g.camera->record(cmd, *g.gbufferSample, &g.timer);
