@@ -67,6 +67,7 @@ struct TradeSettings {
     std::uint32_t bundleResolution = 0;
     std::string fitKey;                  // the bundle frame's fit, when the mode lets it be set
     bool fitVisible = false;             // frames fitted to the camera's visible points
+    bool lobesByBundleDirections = false; // glossy lobes are met only by uniform bundle directions
 };
 
 class Mode {

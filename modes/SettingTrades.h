@@ -43,6 +43,15 @@ class EmbreeScene;
 inline constexpr double kTradeTolerance = 0.01;
 inline constexpr double kTradeSigmas = 3.0;
 
+// Directions a long run of a bundle mode draws (skylight: one per iteration; 1024 is also the
+// default of a stratified pass): a glossy lobe that one direction in more than this meets is said
+// before rendering (directionsPerLobeHit).
+inline constexpr double kLobeDirections = 1024.0;
+
+// How many uniform bundle directions meet a Phong lobe of exponent e once, on average: e + 1
+// (derivation in the .cpp).
+double directionsPerLobeHit(double exponent);
+
 // The visible points of the scene's camera (time 0): the first hits of a grid x grid set of
 // primary rays through pixel centres of a grid at the camera's aspect.
 struct ViewPoint {

@@ -304,6 +304,7 @@ TradeSettings SkylightMode::trades() const {
     t.bundleResolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
     t.fitKey = kFit;
     t.fitVisible = mSettings.getString(kFit) == "visible";
+    t.lobesByBundleDirections = true;
     return t;
 }
 
