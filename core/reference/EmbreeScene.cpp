@@ -40,9 +40,10 @@ RTCRay makeRay(const glm::vec3& origin, const glm::vec3& direction, float tMax) 
     return ray;
 }
 
-RTCRayHit makeRayHit(const glm::vec3& origin, const glm::vec3& direction, float tMax) {
+RTCRayHit makeRayHit(const glm::vec3& origin, const glm::vec3& direction, float tMax, float tNear = 0.0f) {
     RTCRayHit rh;
     rh.ray = makeRay(origin, direction, tMax);
+    rh.ray.tnear = tNear;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     return rh;
@@ -117,10 +118,19 @@ glm::vec3 EmbreeScene::offsetOrigin(const glm::vec3& p, const glm::vec3& normal,
     return p + normal * (kRelativeRayOffset * std::max(offsetScale, maxAbs(p)));
 }
 
+bool EmbreeScene::intersectFromLight(const glm::vec3& light, const glm::vec3& direction, SurfaceHit& hit) const {
+    return intersectBeyond(light, direction, mLightClearance, std::numeric_limits<float>::infinity(), hit);
+}
+
 bool EmbreeScene::intersect(const glm::vec3& origin, const glm::vec3& direction, float tMax, SurfaceHit& hit) const {
+    return intersectBeyond(origin, direction, 0.0f, tMax, hit);
+}
+
+bool EmbreeScene::intersectBeyond(const glm::vec3& origin, const glm::vec3& direction, float tNear, float tMax,
+                                  SurfaceHit& hit) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit rh = makeRayHit(origin, direction, tMax);
+    RTCRayHit rh = makeRayHit(origin, direction, tMax, tNear);
     rtcIntersect1(mRtcScene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
         return false;

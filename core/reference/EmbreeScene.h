@@ -45,6 +45,10 @@ public:
     // than that does not shadow it: the convention every mode shares (ScenePrecision.h).
     bool occludedFromLight(const glm::vec3& from, const glm::vec3& light) const;
     float lightClearance() const { return mLightClearance; }
+    // The first surface a ray leaving point light `light` along unit `direction` meets beyond
+    // lightClearance(): the same convention seen from the light (a surface the light lies on does
+    // not catch the rays that leave into it, as it casts it no shadow). hit.t counts from `light`.
+    bool intersectFromLight(const glm::vec3& light, const glm::vec3& direction, SurfaceHit& hit) const;
 
     // World-space vertices of a triangle (at the baked time).
     void triangle(std::uint32_t mesh, std::uint32_t tri, glm::vec3& a, glm::vec3& b, glm::vec3& c) const;
@@ -60,6 +64,8 @@ private:
     const Scene* mScene;
     double mTime = 0.0;
     float mLightClearance = 0.0f; // ScenePrecision.h's lightClearance of the scene's radius
+    bool intersectBeyond(const glm::vec3& origin, const glm::vec3& direction, float tNear, float tMax,
+                         SurfaceHit& hit) const;
     RTCDevice mDevice = nullptr;
     RTCScene mRtcScene = nullptr;
     std::vector<std::vector<glm::vec3>> mPositions; // world space, per mesh

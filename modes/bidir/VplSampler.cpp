@@ -75,7 +75,7 @@ std::vector<shader::BidirVpl> VplSampler::sample(std::uint64_t first, std::uint3
         v.pdfLight = selectPdf * shader::blBidirEmissionPdf(light, omega);
         v.intensity = light.intensity * shader::blLightProfile(light, omega);
         SurfaceHit hit;
-        if (!(v.pdfLight > 0.0f) || !mEmbree->intersect(light.position, omega, std::numeric_limits<float>::infinity(), hit)) {
+        if (!(v.pdfLight > 0.0f) || !mEmbree->intersectFromLight(light.position, omega, hit)) {
             continue; // escaped: a sample of zero
         }
         // Two-sided reflection, as the reference shades: the side the light ray arrives from.

@@ -1,6 +1,7 @@
 // The reference path tracer against closed forms: the white furnace, a rectangle light over a
 // floor, a point light over a plane, a sealed thin wall; determinism; NaN handling.
 #include "modes/reference/ReferenceMode.h"
+#include "reference/EmbreeScene.h"
 #include "modes/reference/ReferenceTestSupport.h"
 #include "scene/SceneLoader.h"
 #include "support/AnalyticScenes.h"
@@ -143,4 +144,21 @@ TEST(ReferenceAnalytic, EnvironmentLightsALambertianSquare) {
     s.environment.map = Image();
     s.environment.radiance = glm::vec3(2.0f); // constant: the same answer
     EXPECT_NEAR(renderReference(s, 256).radiance().mean().x, 1.0, 0.005);
+}
+
+// Rays leaving a point light keep the shared clearance (ScenePrecision.h), as shadow rays ending at
+// it do: a light lying on a plane does not catch the rays that leave into the plane (bidir's traced
+// VPLs put a VPL at the light itself there, at distance 0: an infinite area density), and one a
+// clearance above it still does.
+TEST(ReferenceAnalytic, RaysFromALightOnAPlaneLeaveThroughIt) {
+    Scene s = bl::test::pointLightOverPlane(0.5f, 1.0f, 1.0f, 8); // the plane y = 0
+    const EmbreeScene rt(s, 0.0);
+    const glm::vec3 down(0.0f, -1.0f, 0.0f);
+    SurfaceHit hit;
+    const glm::vec3 onPlane(0.0f, 0.0f, 0.0f);
+    EXPECT_FALSE(rt.intersectFromLight(onPlane, down, hit)) << "hit at t = " << hit.t;
+    EXPECT_TRUE(rt.intersect(onPlane, down, 1.0f, hit)); // what the VPL sampler traced before
+    const glm::vec3 above(0.0f, 4.0f * rt.lightClearance(), 0.0f);
+    ASSERT_TRUE(rt.intersectFromLight(above, down, hit));
+    EXPECT_NEAR(hit.t, 4.0f * rt.lightClearance(), 1e-3f * rt.lightClearance());
 }
