@@ -306,8 +306,15 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
 // sees the lobe about once per e + 1 directions: far fewer directions than that leave the
 // highlight dark in most runs (an unbiased but very noisy estimate; the stress suite's phong-1e4
 // under a sky reads 0.30 of the reference after 32 directions). Said when e + 1 exceeds
-// kLobeDirections, a long run's number of directions.
+// kLobeDirections, a long run's number of directions. An Ashikhmin-Shirley lobe (exponents nu != nv)
+// holds 2 pi / sqrt((nu + 1)(nv + 1)) of half vectors, about 4 times that of reflected directions
+// near the normal: one direction in sqrt((nu + 1)(nv + 1)) / 4.
 double directionsPerLobeHit(double exponent) { return exponent + 1.0; }
+
+double directionsPerLobeHit(const Material& m) {
+    return m.anisotropic() ? 0.25 * std::sqrt((double(m.exponentU) + 1.0) * (double(m.exponentV) + 1.0))
+                           : directionsPerLobeHit(double(m.exponentU));
+}
 
 std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
     const TradeSettings t = mode.trades();
@@ -316,11 +323,16 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
 
     if (t.lobesByBundleDirections) {
         for (const Material& m : scene.materials) {
-            const double e = std::max(m.exponentU, m.exponentV);
-            if (!m.glossy() || !(directionsPerLobeHit(e) > kLobeDirections)) continue;
+            if (!m.glossy() || !(directionsPerLobeHit(m) > kLobeDirections)) continue;
             char b[160];
-            std::snprintf(b, sizeof b, "%g, one bundle direction in %.0f falls in its lobe", e, directionsPerLobeHit(e));
-            out.push_back(name + ": material '" + m.name + "' has a glossy exponent of " + b +
+            if (m.anisotropic()) {
+                std::snprintf(b, sizeof b, "s of %g and %g, one bundle direction in %.0f falls in its lobe",
+                              double(m.exponentU), double(m.exponentV), directionsPerLobeHit(m));
+            } else {
+                std::snprintf(b, sizeof b, " of %g, one bundle direction in %.0f falls in its lobe",
+                              double(m.exponentU), directionsPerLobeHit(m));
+            }
+            out.push_back(name + ": material '" + m.name + "' has a glossy exponent" + b +
                           ", so its highlights need many times that many iterations (noise, not bias); raster, "
                           "bidir or the reference sample the lobe itself");
         }

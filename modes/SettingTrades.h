@@ -11,8 +11,8 @@
 //                 rays, against exact rays from x: the relative error of the visible points'
 //                 cosine-weighted visibility (ambient occlusion) over uniform directions
 //                 (bundleVisibilityError).
-// (Sharp glossy lobes need no check: their float evaluation, which lost 4% of a 1e6 lobe, is exact
-// to 1e-5 since shaders/shared/CosinePower.h.)
+// (Sharp glossy lobes need no check: their float evaluation, which lost 4% of a 1e6 lobe, is accurate
+// to 1e-5 on the host, about 1e-4 on a GPU, since shaders/shared/CosinePower.h.)
 // A check warns when its error exceeds kTradeTolerance by more than its own noise, and names the
 // setting and the value that brings it under (or says none up to the largest it tries).
 // A suggested fix is the first value tried (doubling) whose estimate lies within the tolerance.
@@ -48,9 +48,11 @@ inline constexpr double kTradeSigmas = 3.0;
 // before rendering (directionsPerLobeHit).
 inline constexpr double kLobeDirections = 1024.0;
 
-// How many uniform bundle directions meet a Phong lobe of exponent e once, on average: e + 1
-// (derivation in the .cpp).
+// How many uniform bundle directions meet a Phong lobe of exponent e once, on average: e + 1; and
+// a material's lobe (Ashikhmin-Shirley: sqrt((nu + 1)(nv + 1)) / 4). Derivation in the .cpp.
 double directionsPerLobeHit(double exponent);
+struct Material;
+double directionsPerLobeHit(const Material& m);
 
 // The visible points of the scene's camera (time 0): the first hits of a grid x grid set of
 // primary rays through pixel centres of a grid at the camera's aspect.

@@ -145,7 +145,7 @@ struct BidirMode::Gpu {
     Bounds bounds;
     std::uint64_t nodesLast = 0;
     std::uint32_t rebuilds = 0;
-    std::uint64_t invalidVpls = 0; // over all frames: light rays that escaped or met black surfaces
+    std::uint64_t invalidVpls = 0; // over all frames: VPLs that add nothing (escaped, black, back-lit or lost)
     std::uint64_t lostVpls = 0;    // over all frames: VPLs whose record was not finite (never used)
     std::uint64_t sampledVpls = 0; // over all frames: what invalidVpls and lostVpls are parts of
     std::vector<glm::vec3> visiblePoints; // fit = visible: this frame's G-buffer points
@@ -541,8 +541,8 @@ ImageSet BidirMode::resolve() {
     // VPLs whose record is not finite are lost work. That every VPL is zero is still worth saying.
     out.counters.emplace_back("invalid_vpls", double(g.invalidVpls));
     out.lost.push_back({"non_finite_vpls", g.lostVpls, g.sampledVpls, "VPLs", "were not finite and left out"});
-    if (g.sampledVpls > 0 && g.invalidVpls == g.sampledVpls) {
-        out.notes.push_back("all " + std::to_string(g.sampledVpls) +
+    if (g.invalidVpls == g.sampledVpls && g.lostVpls < g.sampledVpls) { // all lost: refused instead
+        out.notes.push_back("all " + std::to_string(g.sampledVpls - g.lostVpls) +
                             " VPLs carry no light (their light rays escaped or met black surfaces or the backs of "
                             "them), so the image has no light reflected from a VPL; if the scene should, raise "
                             "pairs_per_frame or iterations (invalid_vpls)");

@@ -18,7 +18,7 @@ std::vector<ParamSpec> RasterMode::parameters() {
     return {
         {kShadowResolution, std::int64_t{1024}, "texels",
          "side of each shadow cube face ([TO12] used 1024^2 per face for direct light)", 16, 8192, {}},
-        {kJitter, true, "", "move the sample inside the pixel from iteration 1 on (box filter)", 0, 1, {}},
+        {kJitter, true, "", "move the sample inside the pixel (box filter; seed 0 starts at the centre, other seeds shift the sequence)", 0, 1, {}},
     };
 }
 

@@ -6,12 +6,13 @@
 // the environment's radiance for camera rays that escape. No indirect light, no light from the
 // environment or emitters onto surfaces: those are the other modes' job.
 //
-// One iteration = one sample per pixel at a sub-pixel position (pixel centre first, then a
-// Halton (2,3) sequence), so iterating converges to the box-filtered pixel (CONVENTIONS.md).
+// One iteration = one sample per pixel at a sub-pixel position (a Halton (2,3) sequence shifted by
+// the seed: seed 0 starts at the pixel centre; core/sampling/PixelSamples.h), so iterating
+// converges to the box-filtered pixel (CONVENTIONS.md).
 //
 // Parameters (`bundlelab modes`):
 //   shadow_resolution  1024  texels   side of each shadow cube face
-//   jitter             true           move the sample inside the pixel from iteration 1 on
+//   jitter             true           move the sample inside the pixel (false: pixel centres)
 #pragma once
 
 #include "gpu/CameraPass.h"

@@ -107,7 +107,7 @@ TEST(DirectionSampler, HaltonDirectionsAreIndependentOfPixelJitter) {
         // Pearson correlation of every (jitter component, direction component) pair.
         double sum[4] = {}, sumSq[4] = {}, cross[2][2] = {};
         for (std::uint32_t k = 0; k < iterations; ++k) {
-            const glm::vec2 jitter = pixelSamplePosition(k);
+            const glm::vec2 jitter = pixelSamplePosition(k, true, seed);
             const glm::vec2 u = directions.unitSquare(k);
             equal += (jitter.x == u.x) + (jitter.y == u.y) + (jitter.x == u.y) + (jitter.y == u.x);
             const double v[4] = {jitter.x, jitter.y, u.x, u.y};

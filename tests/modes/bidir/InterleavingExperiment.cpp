@@ -306,17 +306,19 @@ TEST_F(InterleavingExperiment, DISABLED_TemporalImageMean) {
                     for (int i : {1, 4}) ref4[y * side + x] += 0.25 * r6[(6 * y + j) * 6 * side + 6 * x + i];
         std::printf("reference at the 2x2 sub-pixel centres: %.6f (box %.6f: %.4f); on / it %.4f, off / it %.4f\n",
                     mean(ref4), mean(ref), mean(ref4) / mean(ref), mean(on) / mean(ref4), mean(off) / mean(ref4));
-        // The progressive jitter's first four points (PixelSamples.h), nearest fine pixel centre.
+        // The progressive jitter's first points of each seed's shift (PixelSamples.h), nearest fine
+        // pixel centre, averaged over the seeds the renders used.
         std::vector<double> refH(side * side, 0.0);
         const int fineSide = 6 * side;
         for (int y = 0; y < side; ++y)
             for (int x = 0; x < side; ++x)
-                for (std::uint32_t k = 0; k < std::uint32_t(frames); ++k) {
-                    const glm::vec2 p = pixelSamplePosition(k, true);
-                    const int fx = std::min(fineSide - 1, 6 * x + int(6.0f * p.x));
-                    const int fy = std::min(fineSide - 1, 6 * y + int(6.0f * p.y));
-                    refH[y * side + x] += r6[fy * fineSide + fx] / frames;
-                }
+                for (int seed = 1; seed <= seeds; ++seed)
+                    for (std::uint32_t k = 0; k < std::uint32_t(frames); ++k) {
+                        const glm::vec2 p = pixelSamplePosition(k, true, std::uint64_t(seed));
+                        const int fx = std::min(fineSide - 1, 6 * x + int(6.0f * p.x));
+                        const int fy = std::min(fineSide - 1, 6 * y + int(6.0f * p.y));
+                        refH[y * side + x] += r6[fy * fineSide + fx] / (frames * seeds);
+                    }
         std::printf("reference at the first %d progressive jitter points: %.6f (box: %.4f); off / it %.4f\n", frames,
                     mean(refH), mean(refH) / mean(ref), mean(off) / mean(refH));
     }
