@@ -260,11 +260,11 @@ std::vector<std::pair<std::size_t, std::size_t>> coverTexels(const std::vector<F
 // at 512^2: about 5 pages by the estimate below, the bunny 1), a floor of 20,000 slivers of aspect
 // 1e4 hundreds (308 at 128^2) and a 1M-triangle floor thousands, where every such texel sees only
 // its own triangle's few hits and placing them one by one takes minutes. Past
-// kMaxSingleChartPages times the larger of a page and the rest of the scene's charts (a budget of
-// time and memory per iteration, well above what the real scenes need), refused up front with the
-// figures. A single's footprint is its bounding box at the atlas density plus its padding (an upper
+// AtlasOptions::singleChartPages (16) times the largest of a page, the rest of the scene's charts and
+// a default 512^2 page (a budget of time and memory per iteration, well above what the real scenes
+// need; the last keeps small atlases of 64^2 with a few thousand slivers, about 0.5 M texels,
+// allowed), refused up front with the figures. A single's footprint is its bounding box at the atlas density plus its padding (an upper
 // bound on the mask the packer places; about twice it for slivers).
-constexpr double kMaxSingleChartPages = 16.0;
 
 void refuseOutweighingSingles(const std::vector<FlatChart>& singles, float density, const AtlasOptions& options,
                               std::size_t occupied, int width, int height, std::size_t triangles) {
@@ -279,13 +279,14 @@ void refuseOutweighingSingles(const std::vector<FlatChart>& singles, float densi
         needed += double(texels.x) * double(texels.y);
     }
     const double page = double(width) * double(height);
-    if (needed > kMaxSingleChartPages * std::max(double(occupied), page)) {
+    if (needed > options.singleChartPages * std::max({double(occupied), page, options.singleChartFloorTexels})) {
         throw Error("atlas: " + std::to_string(singles.size()) + " of the scene's " + std::to_string(triangles) +
                     " triangles are too thin or too small for a texel of their own at atlas_resolution " +
                     std::to_string(options.size) + " (slivers, or triangles crowded within a texel); charts of their "
                     "own would need up to about " + std::to_string(std::llround(needed / page)) + " pages (" +
-                    std::to_string(std::llround(needed)) + " texels), more than " + std::to_string(int(kMaxSingleChartPages)) +
-                    " times the rest of the scene's charts (" + std::to_string(occupied) + ") or a page: remesh them into fewer, fatter triangles, or raise "
+                    std::to_string(std::llround(needed)) + " texels), more than " + std::to_string(std::llround(options.singleChartPages)) +
+                    " times the rest of the scene's charts (" + std::to_string(occupied) +
+                    "), a page or a 512^2 page: remesh them into fewer, fatter triangles, or raise "
                     "atlas_resolution until they own texels");
     }
 }

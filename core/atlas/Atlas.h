@@ -26,6 +26,11 @@ struct AtlasOptions {
     int padding = 2;             // texels between charts
     ChartingOptions charting;    // normal cone and seam-length weight of the charts
     float maxStretch = 1.5f;     // charts above this L2 stretch are split
+    // Charts of their own for sub-texel triangles may take at most singleChartPages times the
+    // largest of a page, the rest of the atlas and singleChartFloorTexels; beyond, buildAtlas
+    // refuses the scene (Atlas.cpp: refuseOutweighingSingles).
+    double singleChartPages = 16.0;
+    double singleChartFloorTexels = 512.0 * 512.0;
 };
 
 struct AtlasStats {

@@ -101,6 +101,7 @@ TEST(AtlasTables, CrowdedTrianglesOpenPages) {
 TEST(AtlasTables, OutweighingSubTexelTrianglesAreRefused) {
     atlas::AtlasOptions options;
     options.size = 16;
+    options.singleChartFloorTexels = 0.0; // the budget of a 16^2 atlas itself, not of a 512^2 page
     try {
         atlas::buildAtlas(crowdBesideQuad(10), options);
         FAIL() << "no refusal";

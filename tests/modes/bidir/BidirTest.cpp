@@ -41,7 +41,10 @@ namespace {
 
 constexpr int kResolution = 32;        // camera pixels per side: the estimator, not the image, is tested
 constexpr int kRegions = 4;            // R x R regions of 8 x 8 pixels
-constexpr std::uint32_t kSeeds = 8;    // independent runs per configuration (stats::seeds(kSeeds): 1..8)
+// Independent runs per configuration (stats::seeds(kSeeds): 1..12). Since the pixel jitter follows
+// the seed (core/sampling/PixelSamples.h) the seeds' spread also holds the footprint's integration
+// error, which 8 seeds left a few percent above the noise gate in some regions.
+constexpr std::uint32_t kSeeds = 12;
 constexpr std::uint32_t kFrames = 256; // frames per run of the single-strategy convergence tests
 constexpr std::uint32_t kMisFrames = kFrames / 2;
 constexpr std::uint32_t kFastFrames = 64; // frames per run of the defaults' fast tests (8 seeds: the MIS regions

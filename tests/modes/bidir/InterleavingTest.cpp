@@ -167,7 +167,9 @@ TEST_F(Interleaving, GatherShadesEveryPixelOnceWithItsSubImagesPairs) {
 // must remove at least half the per-pixel variance across seeds (the bias it keeps per region is
 // printed, paired with the unfiltered runs).
 TEST_F(Interleaving, GatheredImageConvergesAndBlurRemovesVariance) {
-    constexpr std::uint32_t kSeeds = 8, kFrames = 16;
+    // 12 seeds: with the seed's pixel jitter (PixelSamples.h) the paired regions' spread rose 12%
+    // above the noise gate at 8.
+    constexpr std::uint32_t kSeeds = 12, kFrames = 16;
     constexpr double kDimRegion = 0.25;
     constexpr int kSide = 8, kRegions = kResolution / kSide;
     const Scene s = cornellPoint();
