@@ -266,9 +266,9 @@ std::vector<std::pair<std::size_t, std::size_t>> coverTexels(const std::vector<F
 // allowed), refused up front with the figures. A single's footprint is its bounding box at the atlas density plus its padding (an upper
 // bound on the mask the packer places; about twice it for slivers).
 
+// `needed` carries the texels of the singles of earlier coverage rounds: the budget is for all.
 void refuseOutweighingSingles(const std::vector<FlatChart>& singles, float density, const AtlasOptions& options,
-                              std::size_t occupied, int width, int height, std::size_t triangles) {
-    double needed = 0.0;
+                              std::size_t occupied, int width, int height, std::size_t triangles, double& needed) {
     for (const FlatChart& c : singles) {
         glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
         for (const glm::vec2& q : c.uv) {
@@ -329,6 +329,7 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
     for (const ChartPacker& p : packers) occupied += p.occupiedTexels();
     log::debug("atlas: charts take " + std::to_string(double(occupied) / (double(width) * height * pages)) +
                " of the atlas with their padding");
+    double singleTexels = 0.0; // what the singles of every round need (refuseOutweighingSingles)
     for (int round = 0;; ++round) {
         std::vector<std::pair<std::size_t, std::size_t>> uncovered =
             coverTexels(atlas.charts, width, height, pages, owner, owned);
@@ -348,7 +349,7 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
         }
         std::erase_if(atlas.charts, [](const FlatChart& c) { return c.faces.empty(); });
         orientCharts(singles);
-        refuseOutweighingSingles(singles, density, options, occupied, width, height, st.triangles);
+        refuseOutweighingSingles(singles, density, options, occupied, width, height, st.triangles, singleTexels);
         for (FlatChart& single : singles) {
             glm::vec2 offset;
             int turns = 0;
