@@ -70,6 +70,19 @@ struct TradeSettings {
     bool lobesByBundleDirections = false; // glossy lobes are met only by uniform bundle directions
 };
 
+// A mode's TradeSettings from the keys it names (empty: none), their values read from `settings`.
+inline TradeSettings tradeSettingsOf(const Settings& settings, const std::string& shadowKey, const std::string& bundleKey,
+                                     const std::string& fitKey = {}) {
+    TradeSettings t;
+    t.shadowKey = shadowKey;
+    t.shadowResolution = shadowKey.empty() ? 0u : static_cast<std::uint32_t>(settings.getInt(shadowKey));
+    t.bundleKey = bundleKey;
+    t.bundleResolution = bundleKey.empty() ? 0u : static_cast<std::uint32_t>(settings.getInt(bundleKey));
+    t.fitKey = fitKey;
+    t.fitVisible = !fitKey.empty() && settings.getString(fitKey) == "visible";
+    return t;
+}
+
 class Mode {
 public:
     virtual ~Mode() = default;

@@ -534,13 +534,6 @@ PassTimes AtlasMode::timings() const {
     return t;
 }
 
-TradeSettings AtlasMode::trades() const {
-    TradeSettings t;
-    t.shadowKey = kShadowResolution;
-    t.shadowResolution = static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution));
-    t.bundleKey = kBundleResolution;
-    t.bundleResolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
-    return t;
-}
+TradeSettings AtlasMode::trades() const { return tradeSettingsOf(mSettings, kShadowResolution, kBundleResolution); }
 
 } // namespace bl

@@ -566,14 +566,7 @@ ImageSet BidirMode::resolve() {
 PassTimes BidirMode::timings() const { return mGpu ? mGpu->timer.totals() : PassTimes{}; }
 
 TradeSettings BidirMode::trades() const {
-    TradeSettings t;
-    t.shadowKey = kShadowResolution;
-    t.shadowResolution = static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution));
-    t.bundleKey = kBundleResolution;
-    t.bundleResolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
-    t.fitKey = kFit;
-    t.fitVisible = mSettings.getString(kFit) == "visible";
-    return t;
+    return tradeSettingsOf(mSettings, kShadowResolution, kBundleResolution, kFit);
 }
 
 } // namespace bl

@@ -360,15 +360,10 @@ ImageSet MultibounceMode::resolve() {
 
 PassTimes MultibounceMode::timings() const { return mGpu ? mGpu->timer.totals() : PassTimes{}; }
 
+// Frames over the scene's sphere, with no fit setting: a path's later vertices lie anywhere in the
+// scene, so a frame fitted to the camera's points would miss them.
 TradeSettings MultibounceMode::trades() const {
-    TradeSettings t;
-    t.shadowKey = kShadowResolution;
-    t.shadowResolution = static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution));
-    // Frames over the scene's sphere, with no fit setting: a path's later vertices lie anywhere
-    // in the scene, so a frame fitted to the camera's points would miss them.
-    t.bundleKey = kBundleResolution;
-    t.bundleResolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
-    return t;
+    return tradeSettingsOf(mSettings, kShadowResolution, kBundleResolution);
 }
 
 } // namespace bl

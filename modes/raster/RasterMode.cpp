@@ -195,11 +195,6 @@ ImageSet RasterMode::resolve() {
 
 PassTimes RasterMode::timings() const { return mGpu ? mGpu->timer.totals() : PassTimes{}; }
 
-TradeSettings RasterMode::trades() const {
-    TradeSettings t;
-    t.shadowKey = kShadowResolution;
-    t.shadowResolution = static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution));
-    return t;
-}
+TradeSettings RasterMode::trades() const { return tradeSettingsOf(mSettings, kShadowResolution, {}); }
 
 } // namespace bl

@@ -299,11 +299,7 @@ PassTimes SkylightMode::timings() const {
 }
 
 TradeSettings SkylightMode::trades() const {
-    TradeSettings t;
-    t.bundleKey = kBundleResolution;
-    t.bundleResolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
-    t.fitKey = kFit;
-    t.fitVisible = mSettings.getString(kFit) == "visible";
+    TradeSettings t = tradeSettingsOf(mSettings, {}, kBundleResolution, kFit);
     t.lobesByBundleDirections = true;
     return t;
 }
