@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""Medians over repeated scripts/device-bench.sh runs: DIR/summary*.json -> DIR/medians.md.
+
+    experiments/gpu/medians.py DIR
+Every figure is the median over the repeats, the repeats' range beside it (same machine, same kit).
+"""
+import glob
+import json
+import os
+import statistics
+import sys
+
+
+def med(values, spec):
+    values = [v for v in values if v is not None]
+    if not values:
+        return "—"
+    m = statistics.median(values)
+    return f"{m:{spec}} ({min(values):{spec}}–{max(values):{spec}})" if len(values) > 1 else f"{m:{spec}}"
+
+
+def main(d):
+    runs = [json.load(open(f)) for f in sorted(glob.glob(os.path.join(d, "summary*.json")))]
+    if not runs:
+        sys.exit(f"{d}: no summary*.json")
+    first = runs[0]
+    md = [f"# Device benchmark, medians over {len(runs)} runs", "",
+          f"- device: {'; '.join(first['devices'])}", f"- cpu: {first['machine'].get('cpu', '?')}",
+          f"- revision: {first['machine'].get('revision', '?')}; kit: `scripts/device-kit.sh`, run: "
+          "`scripts/device-bench.sh OUT --budget 330`", "",
+          "## Milliseconds per iteration (640×360)", "",
+          "| mode | scene | set-up s | wall ms/it | GPU ms/it | largest passes (ms/it) |", "|---|---|---|---|---|---|"]
+    for row in first["passes"]:
+        if "error" in row:
+            continue
+        same = [next(r for r in run["passes"] if r["config"] == row["config"]) for run in runs]
+        names = sorted(row["passes_ms_per_iteration"], key=lambda k: -row["passes_ms_per_iteration"][k])[:4]
+        passes = ", ".join(f"{k} {med([s['passes_ms_per_iteration'].get(k) for s in same], '.2f')}" for k in names)
+        md.append(f"| {row['mode']} | {row['scene']} | {med([s['setup_seconds'] for s in same], '.2f')} | "
+                  f"{med([s['wall_ms_per_iteration'] for s in same], '.2f')} | "
+                  f"{med([s['gpu_ms_per_iteration'] for s in same], '.2f')} | {passes} |")
+    md += ["", "## Bundles against the floor", "",
+           "| scene | backend | resolution | floor ms | build ms | walk ms | (build+walk)/floor |", "|---|---|---|---|---|---|---|"]
+    for row in first["bundles"]:
+        key = (row["scene"], row["backend"], row["resolution"])
+        same = [next(r for r in run["bundles"] if (r["scene"], r["backend"], r["resolution"]) == key) for run in runs]
+        md.append(f"| {row['scene']} | {row['backend']} | {row['resolution']}² | {med([s['floor_ms_median'] for s in same], '.3f')} | "
+                  f"{med([s['build_ms_median'] for s in same], '.3f')} | {med([s['traverse_ms_median'] for s in same], '.3f')} | "
+                  f"{med([s['ratio_to_floor'] for s in same], '.2f')} |")
+    md += ["", "## Equal time against the path tracer (6 s each, 128², seed 0)", "",
+           "| scene | mode | iterations | relMSE | relMSE / path tracer | image mean / reference (g) |", "|---|---|---|---|---|---|"]
+    for row in first["equal_time"]:
+        key = (row["scene"], row["label"])
+        same = [next(r for r in run["equal_time"] if (r["scene"], r["label"]) == key) for run in runs]
+        md.append(f"| {row['scene']} | {row['label']} | {med([s['iterations'] for s in same], '.0f')} | "
+                  f"{med([s['relmse'] for s in same], '.3g')} | {med([s['relmse_over_path_tracer'] for s in same], '.3g')} | "
+                  f"{med([s['mean_ratio'][1] if s['mean_ratio'] else None for s in same], '.4f')} |")
+    open(os.path.join(d, "medians.md"), "w").write("\n".join(md) + "\n")
+    print("\n".join(md))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else ".")

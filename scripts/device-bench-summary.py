@@ -1,0 +1,163 @@
+#!/usr/bin/env python3
+"""Summary of a scripts/device-bench.sh run: OUTDIR/summary.md (tables) and OUTDIR/summary.json.
+
+Standard library only (the machine the kit runs on may have no matplotlib). Exit status 1 when a step
+failed (a render or benchmark exited non-zero); steps skipped for the budget are listed, not failures.
+"""
+import csv
+import json
+import os
+import sys
+
+
+def read(path, default=""):
+    try:
+        with open(path) as f:
+            return f.read().strip()
+    except OSError:
+        return default
+
+
+def per_pass(out):
+    """Per configuration: ms per iteration of each pass = (T(1 + F) - T(1)) / F."""
+    rows = []
+    base = os.path.join(out, "passes")
+    for config in sorted(os.listdir(base)) if os.path.isdir(base) else []:
+        d = os.path.join(base, config)
+        first, last = os.path.join(d, "run.1.json"), os.path.join(d, "run.json")
+        if not (os.path.exists(first) and os.path.exists(last)):
+            rows.append({"config": config, "error": "the run did not finish (see its log)"})
+            continue
+        a, b = json.load(open(first)), json.load(open(last))
+        n1, n2 = a["iterations"], b["iterations"]
+        frames = n2 - n1
+        pa = {p["name"]: p for p in a["passes"]}
+        passes, first_only = {}, {}
+        for p in b["passes"]:
+            before = pa.get(p["name"])
+            if before and before["count"] == p["count"]:
+                first_only[p["name"]] = p["total_ms"]  # e.g. the lights' shadow maps of a static scene
+            else:
+                passes[p["name"]] = (p["total_ms"] - (before["total_ms"] if before else 0.0)) / frames
+        rows.append({
+            "config": config, "mode": b["mode"], "scene": os.path.basename(b["scene"]),
+            "width": b["width"], "height": b["height"], "iterations": [n1, n2],
+            "settings": b.get("settings", {}), "setup_seconds": b["setup_seconds"],
+            "wall_ms_per_iteration": (b["wall_seconds"] - a["wall_seconds"]) * 1000.0 / frames,
+            "first_iteration_wall_ms": a["wall_seconds"] * 1000.0,
+            # Passes named "(wall)" are host-timed spans around GPU passes: not added twice.
+            "gpu_ms_per_iteration": sum(v for k, v in passes.items() if not k.endswith("(wall)")), "passes_ms_per_iteration": passes,
+            "first_iteration_only_ms": first_only,
+            "device": b["environment"]["device"],
+        })
+    return rows
+
+
+def bundles(out):
+    rows = []
+    base = os.path.join(out, "bundles")
+    for f in sorted(os.listdir(base)) if os.path.isdir(base) else []:
+        if f.endswith(".json"):
+            j = json.load(open(os.path.join(base, f)))
+            for r in j["results"]:
+                rows.append({"scene": os.path.basename(j["scene"]), "triangles": j["triangles"], "backend": j["backend"],
+                             "directions": j["directions"], **r})
+    return rows
+
+
+def equal_time(out):
+    path = os.path.join(out, "equal-time", "results.csv")
+    if not os.path.exists(path):
+        return []
+    rows = list(csv.DictReader(open(path)))
+    # A mode is compared with the path tracer judged against the same reference image (bidir's
+    # reference keeps paths of up to four segments, like bidir).
+    def reference_of(r):
+        return r["scene"], read(os.path.join(out, "equal-time", r["dir"], "reference.txt"))
+    pt = {reference_of(r): float(r["relmse"]) for r in rows if r["mode"] == "reference" and r["relmse"]}
+    result = []
+    for r in rows:
+        rel = float(r["relmse"]) if r["relmse"] else None
+        result.append({
+            "scene": r["scene"], "mode": r["mode"], "label": r["label"], "iterations": int(r["iterations"]),
+            "wall_seconds": float(r["wall_seconds"]), "setup_seconds": float(r["setup_seconds"]),
+            "gpu_ms": float(r["gpu_ms"]) if r["gpu_ms"] else None, "relmse": rel,
+            "relmse_over_path_tracer": rel / pt[reference_of(r)] if rel is not None and pt.get(reference_of(r)) else None,
+            "reference": reference_of(r)[1],
+            "mean_ratio": [float(r[k]) for k in ("mean_ratio_r", "mean_ratio_g", "mean_ratio_b") if r[k]],
+            "reference_noise_relmse": float(r["reference_noise_relmse"]) if r["reference_noise_relmse"] else None,
+        })
+    return result
+
+
+def fmt(v, spec=".3g"):
+    return "—" if v is None else format(v, spec)
+
+
+def main(out):
+    steps = [line.split(" ", 2) for line in read(os.path.join(out, "steps.txt")).splitlines() if line.strip()]
+    failed = [s for s in steps if len(s) == 3 and s[2].startswith("failed")]
+    skipped = [s for s in steps if len(s) == 3 and s[2].startswith("skipped")]
+    summary = {
+        "machine": dict(line.split(": ", 1) for line in read(os.path.join(out, "machine.txt")).splitlines() if ": " in line),
+        "devices": read(os.path.join(out, "devices.txt")).splitlines(),
+        "passes": per_pass(out), "bundles": bundles(out), "equal_time": equal_time(out),
+        "failed": [" ".join(s) for s in failed], "skipped": [" ".join(s) for s in skipped],
+    }
+    m = summary["machine"]
+    md = ["# bundlelab device benchmark", "",
+          f"- device(s): {'; '.join(summary['devices']) or 'none found'}",
+          *(f"- {k}: {v}" for k, v in m.items()), ""]
+    if failed or skipped:
+        md += ["Failed: " + (", ".join(" ".join(s[:2]) for s in failed) or "none") + "; skipped (budget): "
+               + (", ".join(" ".join(s[:2]) for s in skipped) or "none"), ""]
+
+    md += ["## Milliseconds per pass and iteration", "",
+           "(T(1+F) − T(1)) / F from the modes' GPU timestamps in one process (a checkpoint after iteration 1): set-up "
+           "(scene upload, BVH, atlas, pipelines) and the first iteration's shader compilation fall out. Wall = the mode's "
+           "iterate() calls (host work and waits included). Passes that ran in the first iteration only (the lights' "
+           "shadow maps of a static scene) are listed apart with their one time.", "",
+           "| mode | scene | size | F | set-up s | first iteration wall ms | wall ms/it | GPU ms/it | passes (ms/it) | first iteration only (ms) |",
+           "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in summary["passes"]:
+        if "error" in r:
+            md.append(f"| {r['config']} | — | — | — | — | — | — | — | {r['error']} | — |")
+            continue
+        passes = ", ".join(f"{k} {v:.2f}" for k, v in sorted(r["passes_ms_per_iteration"].items(), key=lambda kv: -kv[1]))
+        md.append(f"| {r['mode']} | {r['scene']} | {r['width']}×{r['height']} | {r['iterations'][1] - r['iterations'][0]} | "
+                  f"{r['setup_seconds']:.2f} | {r['first_iteration_wall_ms']:.1f} | {r['wall_ms_per_iteration']:.2f} | "
+                  f"{r['gpu_ms_per_iteration']:.2f} | {passes} | "
+                  f"{', '.join(f'{k} {v:.2f}' for k, v in r['first_iteration_only_ms'].items()) or '—'} |")
+
+    md += ["", "## Bundles against the rasterization floor", "",
+           "Medians over the directions (after a warm-up) of `bundlelab bench bundles`; floor = rasterizing the scene once "
+           "at the bundle's resolution.", "",
+           "| scene | triangles | backend | resolution | fragments | floor ms | build ms | walk ms | (build+walk)/floor |",
+           "|---|---|---|---|---|---|---|---|---|"]
+    for r in summary["bundles"]:
+        md.append(f"| {r['scene']} | {r['triangles']} | {r['backend']} | {r['resolution']}² | {r['fragments_median']:.0f} | "
+                  f"{r['floor_ms_median']:.3f} | {r['build_ms_median']:.3f} | {r['traverse_ms_median']:.3f} | "
+                  f"{r['ratio_to_floor']:.2f} |")
+
+    md += ["", "## Every mode against the path tracer at equal time", "",
+           "`bundlelab run` of OUTDIR/equal-time.toml: the same wall seconds of each mode's own work, relMSE against the "
+           "runner's reference (the path tracer at higher spp, another seed); ratio = relMSE / the path tracer's at the same "
+           "time (below 1: the mode wins).", "",
+           "| scene | mode | iterations | wall s | set-up s | relMSE | relMSE / path tracer | image mean / reference (r, g, b) | reference |",
+           "|---|---|---|---|---|---|---|---|---|"]
+    for r in summary["equal_time"]:
+        md.append(f"| {r['scene']} | {r['label']} | {r['iterations']} | {r['wall_seconds']:.2f} | {r['setup_seconds']:.2f} | "
+                  f"{fmt(r['relmse'])} | {fmt(r['relmse_over_path_tracer'])} | "
+                  f"{', '.join(format(x, '.4f') for x in r['mean_ratio']) or '—'} | {os.path.basename(r['reference'])} |")
+    with open(os.path.join(out, "summary.md"), "w") as f:
+        f.write("\n".join(md) + "\n")
+    with open(os.path.join(out, "summary.json"), "w") as f:
+        json.dump(summary, f, indent=2)
+    print("\n".join(md))
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit("usage: device-bench-summary.py OUTDIR")
+    sys.exit(main(sys.argv[1]))

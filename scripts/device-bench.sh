@@ -1,0 +1,218 @@
+#!/usr/bin/env bash
+# The GPU benchmark kit's one call (benchmarks, not pass/fail): on the machine's Vulkan device, within
+# a time budget (default 8 minutes),
+#   1. every mode's milliseconds per pass and iteration ([TO12] Table 1's shape): each configuration
+#      renders 1 + F iterations with a checkpoint after the first; a pass's cost per iteration is the
+#      difference over F, which leaves out set-up and first-use shader compilation;
+#   2. bundle build + walk against the rasterization floor, both build backends, Sponza and the bunny;
+#   3. each mode against the path tracer at equal time on this machine's cores (the experiment runner;
+#      relMSE against a 1024-spp reference);
+# and writes OUTDIR/summary.md (one document of tables) and OUTDIR/summary.json. A step that would
+# overrun the budget is skipped and listed as skipped; a failed render is listed with its exit status.
+# Runs from the unpacked kit (scripts/device-kit.sh) or from a checkout with build/bundlelab.
+#
+#   scripts/device-bench.sh OUTDIR [--quick] [--budget SECONDS] [--device D]
+#   --quick: tiny sizes and budgets (the test runs it on lavapipe), not for figures.
+set -uo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+out=${1:?usage: device-bench.sh OUTDIR [--quick] [--budget SECONDS] [--device D]}
+shift
+quick=0 budget=480 device=()
+while (($#)); do
+    case $1 in
+        --quick) quick=1 ;;
+        --budget) budget=$2; shift ;;
+        --device) device=(--device "$2"); shift ;;
+        *) echo "device-bench: unknown option $1" >&2; exit 2 ;;
+    esac
+    shift
+done
+if [[ -x "$root/bin/bundlelab" ]]; then
+    bl=$root/bin/bundlelab
+    export LD_LIBRARY_PATH=$root/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+else
+    bl=$root/build/bundlelab
+fi
+[[ -x "$bl" ]] || { echo "device-bench: no bundlelab binary at $bl" >&2; exit 1; }
+python=python3
+command -v /usr/bin/python3 >/dev/null && python=/usr/bin/python3
+mkdir -p "$out"/passes "$out"/bundles
+start=$(date +%s)
+# Each step owns a share of the budget (passes to 45 %, bundles to 65 %, equal time the rest), so a
+# slow device still reaches every step; a render that would start with under 20 s left is skipped.
+step_end=$start
+step() { step_end=$((start + budget * $1 / 100)); }
+remaining() { echo $((step_end - $(date +%s))); }
+log() { echo "[$(($(date +%s) - start)) s] $*" | tee -a "$out/log.txt"; }
+: >"$out/steps.txt" # one line per render / benchmark: kind, name, status
+
+# The device. A machine whose loader finds no driver by itself (a container with the NVIDIA driver
+# mounted, say) gets the ICD files where they usually lie.
+if ! "$bl" devices >"$out/devices.txt" 2>&1 || [[ ! -s "$out/devices.txt" ]]; then
+    for icd in /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/icd.d/nvidia_icd.json \
+               /etc/vulkan/icd.d/nvidia_icd.json; do
+        if [[ -f "$icd" ]]; then
+            export VK_DRIVER_FILES=$icd VK_ICD_FILENAMES=$icd
+            "$bl" devices >"$out/devices.txt" 2>&1 && [[ -s "$out/devices.txt" ]] && break
+        fi
+    done
+fi
+log "devices: $(tr '\n' ' ' <"$out/devices.txt")"
+{
+    echo "revision: $(cat "$root/REVISION" 2>/dev/null || git -C "$root" rev-parse --short=12 HEAD 2>/dev/null || echo unknown)"
+    echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
+    echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), $(nproc) hardware threads"
+    command -v nvidia-smi >/dev/null && echo "gpu: $(nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader 2>/dev/null | head -1)"
+    echo "load: $(cut -d' ' -f1-3 /proc/loadavg)"
+    echo "quick: $quick"
+} >"$out/machine.txt"
+
+cornell=$root/data/cornell-box/cornell-point.toml
+cornell_area=$root/data/cornell-box/cornell.toml
+sponza=$root/data/external/sponza-point.toml
+bunny_env=$root/data/external/bunny-envmap.toml
+bunny=$root/../shared/data/bunny/mcguire/bunny.obj
+
+step 45
+# 1. Per-pass times. Each line: mode, scene name, scene file, extra iterations F, settings.
+if ((quick)); then
+    width=64 height=36
+    configs=(
+        "raster cornell $cornell 1 shadow_resolution=64"
+        "bidir cornell $cornell 1 pairs_per_frame=2 bundle_resolution=32 shadow_resolution=64 vpl_shadow_resolution=16 rsm_resolution=16"
+        "multibounce cornell $cornell 1 bundle_count=2 paths_per_pixel=1 bundle_resolution=32"
+        "atlas cornell $cornell 1 atlas_resolution=32 bundle_resolution=32 shadow_resolution=64 view_samples=1"
+        "skylight sky-blocks $root/data/analytic/sky-blocks.toml 1 bundle_resolution=32"
+    )
+else
+    width=640 height=360
+    configs=(
+        "raster cornell $cornell 8"
+        "raster sponza $sponza 8"
+        "bidir cornell $cornell 4"
+        "bidir sponza $sponza 4"
+        "multibounce cornell $cornell 4"
+        "multibounce sponza $sponza 2"
+        "atlas cornell $cornell 16"
+        "atlas sponza $sponza 8"
+        "skylight bunny-envmap $bunny_env 16"
+    )
+fi
+for config in "${configs[@]}"; do
+    read -r mode name scene frames settings <<<"$config"
+    sets=()
+    for kv in $settings; do sets+=(--set "$kv"); done
+    dir=$out/passes/$mode-$name
+    mkdir -p "$dir"
+    n=$((frames + 1))
+    left=$(remaining)
+    if ((left < 20)); then
+        echo "passes $mode-$name skipped (budget)" >>"$out/steps.txt"; log "skip $mode $name"; continue
+    fi
+    log "passes: $mode $name, $n iterations"
+    # One process: the checkpoint after iteration 1 records the passes so far, and the difference to
+    # the end is F iterations with set-up and first-use shader compilation left out.
+    timeout "$left" "$bl" render "$scene" --mode "$mode" --width "$width" --height "$height" --iterations "$n" \
+        --checkpoint 1 "${sets[@]}" "${device[@]}" --out "$dir/run.exr" >"$dir/run.log" 2>&1
+    rc=$?
+    echo "passes $mode-$name $([[ $rc == 0 ]] && echo ok || echo "failed (exit $rc)")" >>"$out/steps.txt"
+done
+
+step 65
+# 2. Bundles against the floor.
+if ((quick)); then
+    bench_scenes=("cornell $root/data/cornell-box/cornell.toml"); res=(--resolution 64 --resolution 128); dirs=2
+else
+    bench_scenes=("sponza $sponza" "bunny $bunny"); res=(--resolution 512 --resolution 1024 --resolution 2048); dirs=8
+fi
+for entry in "${bench_scenes[@]}"; do
+    read -r name scene <<<"$entry"
+    for backend in raster compute; do
+        left=$(remaining)
+        if ((left < 20)); then
+            echo "bundles $name-$backend skipped (budget)" >>"$out/steps.txt"; continue
+        fi
+        log "bundles: $name, $backend"
+        timeout "$left" "$bl" bench bundles "$scene" "${res[@]}" --directions "$dirs" --backend "$backend" "${device[@]}" \
+            --json "$out/bundles/$name-$backend.json" >"$out/bundles/$name-$backend.log" 2>&1
+        rc=$?
+        echo "bundles $name-$backend $([[ $rc == 0 ]] && echo ok || echo "failed (exit $rc)")" >>"$out/steps.txt"
+    done
+done
+
+step 100
+# 3. Equal time against the path tracer (the runner; one GPU task at a time, the path tracer on all cores).
+if ((quick)); then
+    seconds=0.5 spp=16 resolution=16 mb="bundle_count = 2, paths_per_pixel = 1, bundle_resolution = 32"
+    bd="pairs_per_frame = 2, bundle_resolution = 32, shadow_resolution = 64, vpl_shadow_resolution = 16, rsm_resolution = 16"
+    at="atlas_resolution = 32, bundle_resolution = 32, shadow_resolution = 64, view_samples = 1"
+    scenes="[[scene]]
+name = \"cornell-point\"
+file = \"$cornell\"
+resolution = [$resolution, $resolution]"
+else
+    seconds=6 spp=1024 resolution=128 mb="" bd="" at=""
+    scenes="[[scene]]
+name = \"cornell-point\"
+file = \"$cornell\"
+resolution = [$resolution, $resolution]
+
+[[scene]]
+name = \"cornell-area\"
+file = \"$cornell_area\"
+resolution = [$resolution, $resolution]"
+fi
+cat >"$out/equal-time.toml" <<EOF
+# Written by scripts/device-bench.sh: every mode at equal wall time against the path tracer.
+[experiment]
+name        = "device-equal-time"
+seeds       = [0]
+seconds     = $seconds
+checkpoints = "log"
+
+[reference]
+spp      = $spp
+settings = { max_segments = 64 }
+
+$scenes
+
+[[mode]]
+mode  = "reference"
+label = "path-tracer"
+
+[[mode]]
+mode     = "multibounce"
+settings = { $mb }
+
+[[mode]]
+mode      = "reference"
+label     = "path-tracer-4"
+scenes    = ["cornell-point"]
+settings  = { max_segments = 4 }
+reference = { max_segments = 4 }
+
+[[mode]]
+mode      = "bidir"
+scenes    = ["cornell-point"]
+settings  = { $bd }
+reference = { max_segments = 4 }   # bidir computes paths of up to two bounces
+
+[[mode]]
+mode     = "atlas"
+settings = { $at }
+EOF
+left=$(remaining)
+if ((left < 60)); then
+    echo "equal-time all skipped (budget)" >>"$out/steps.txt"
+else
+    log "equal time: $seconds s per task"
+    timeout "$left" "$bl" run "$out/equal-time.toml" --out "$out/equal-time" "${device[@]}" >"$out/equal-time.log" 2>&1
+    rc=$?
+    echo "equal-time all $([[ $rc == 0 ]] && echo ok || echo "failed (exit $rc)")" >>"$out/steps.txt"
+fi
+
+log "summary"
+"$python" "$root/scripts/device-bench-summary.py" "$out"
+rc=$?
+log "done in $(($(date +%s) - start)) s"
+exit $rc
