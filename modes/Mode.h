@@ -68,6 +68,14 @@ struct TradeSettings {
     std::string fitKey;                  // the bundle frame's fit, when the mode lets it be set
     bool fitVisible = false;             // frames fitted to the camera's visible points
     bool lobesByBundleDirections = false; // glossy lobes are met only by uniform bundle directions
+    // A setting that ends the mode's paths early (multibounce: bundle_count <= 8 cuts a path at
+    // K + 2 segments): its key, value, the longest path kept, and the value from which none is cut;
+    // each unit of the value below that keeps one segment more. Empty key: no path is cut.
+    std::string pathKey;
+    std::uint32_t pathValue = 0;
+    std::uint32_t pathSegments = 0;
+    std::uint32_t pathUncutFrom = 0;
+    std::string pathNote; // a bias the cut comes with besides the paths it leaves out
 };
 
 // A mode's TradeSettings from the keys it names (empty: none), their values read from `settings`.

@@ -2,6 +2,7 @@
 
 #include "modes/Mode.h"
 #include "reference/EmbreeScene.h"
+#include "reference/ReferenceRenderer.h"
 #include "scene/Scene.h"
 #include "scene/ScenePrecision.h"
 #include "scene/ShaderConversions.h"
@@ -316,6 +317,55 @@ double directionsPerLobeHit(const Material& m) {
                            : directionsPerLobeHit(double(m.exponentU));
 }
 
+std::vector<TradeError> cutPathErrors(const Scene& scene, const std::vector<std::uint32_t>& segments) {
+    Scene small = scene;
+    const glm::ivec2 full = scene.camera.resolution;
+    small.camera.resolution =
+        glm::ivec2(kCutPathWidth, std::max(1, int(std::lround(double(kCutPathWidth) * full.y / std::max(1, full.x)))));
+    // Per render: the image total (sum of r + g + b) and, per pixel, the totals of the even and
+    // odd samples' means (two independent half estimates).
+    struct Totals {
+        double total = 0.0;
+        std::vector<double> halves[2];
+    };
+    auto render = [&](std::uint32_t maxSegments) {
+        ReferenceSettings settings;
+        settings.path.maxSegments = int(maxSegments);
+        ReferenceRenderer r(small, 0.0, settings);
+        for (std::uint32_t i = 0; i < kCutPathSamples; ++i)
+            r.renderPass(i, 0x5e77u);
+        Totals out;
+        const Image mean = r.mean();
+        for (const glm::vec3& p : mean.pixels())
+            out.total += double(p.x) + double(p.y) + double(p.z);
+        for (int h = 0; h < 2; ++h) {
+            const Image half = r.halfMean(h);
+            for (const glm::vec3& p : half.pixels())
+                out.halves[h].push_back(double(p.x) + double(p.y) + double(p.z));
+        }
+        return out;
+    };
+    const Totals uncut = render(64);
+    std::vector<TradeError> errors;
+    for (std::uint32_t n : segments) {
+        const Totals cut = render(n);
+        TradeError e;
+        if (uncut.total > 0.0) {
+            e.error = (cut.total - uncut.total) / uncut.total;
+            // The renders share their samples, so the difference holds the cut-off paths with
+            // little noise; its variance per pixel from the two halves, (d_even - d_odd)^2 / 4.
+            double variance = 0.0;
+            for (std::size_t p = 0; p < uncut.halves[0].size(); ++p) {
+                const double d = (cut.halves[0][p] - uncut.halves[0][p]) - (cut.halves[1][p] - uncut.halves[1][p]);
+                variance += 0.25 * d * d;
+            }
+            e.stderr_ = std::sqrt(variance) / uncut.total;
+        }
+        errors.push_back(e);
+    }
+    return errors;
+}
+
 std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
     const TradeSettings t = mode.trades();
     const std::string name(mode.name());
@@ -335,6 +385,29 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
             out.push_back(name + ": material '" + m.name + "' has a glossy exponent" + b +
                           ", so its highlights need many times that many iterations (noise, not bias); raster, "
                           "bidir or the reference sample the lobe itself");
+        }
+    }
+
+    if (!t.pathKey.empty() && t.pathSegments > 0) {
+        // The cut itself and, for the fix, one segment more per unit of the setting up to the
+        // value that cuts nothing.
+        std::vector<std::uint32_t> cuts;
+        for (std::uint32_t v = t.pathValue; v < t.pathUncutFrom; ++v)
+            cuts.push_back(t.pathSegments + (v - t.pathValue));
+        const std::vector<TradeError> errors = cutPathErrors(scene, cuts);
+        if (!errors.empty() && errors.front().exceeds()) {
+            std::string fix;
+            for (std::size_t i = 1; i < errors.size() && fix.empty(); ++i) {
+                if (errors[i].within())
+                    fix = "fix: " + t.pathKey + "=" + std::to_string(t.pathValue + i) + " (" + describe(errors[i]) + ")";
+            }
+            if (fix.empty())
+                fix = "fix: " + t.pathKey + "=" + std::to_string(t.pathUncutFrom) + " or more (no path cut)";
+            out.push_back(name + ": " + t.pathKey + "=" + std::to_string(t.pathValue) + " ends every path after " +
+                          std::to_string(t.pathSegments) + " segments, which leaves out " + describe(errors.front()) +
+                          " of the image (the reference path tracer at " + std::to_string(kCutPathWidth) +
+                          " pixels wide with and without the cut; tolerance 1 %)" +
+                          (t.pathNote.empty() ? std::string() : "; " + t.pathNote) + "; " + fix);
         }
     }
 

@@ -1,7 +1,7 @@
 // What a mode's settings trade on a given scene, said before rendering (issue 19 item 8).
 //
-// Three checks, each a criterion with a stated tolerance, evaluated on the host (Embree, no GPU)
-// from the points the camera sees (a coarse grid of primary rays):
+// Four checks, each a criterion with a stated tolerance, evaluated on the host (Embree, no GPU);
+// the first three from the points the camera sees (a coarse grid of primary rays):
 //   shadow cube   the 4x4-PCF receiver-plane lookup of shaders/gpu/ShadowCubeLookup.glsl, replayed
 //                 with rays along each tap's texel centre ray, against exact shadow rays: the
 //                 relative error of the visible points' direct irradiance (shadowCubeError).
@@ -11,6 +11,9 @@
 //                 rays, against exact rays from x: the relative error of the visible points'
 //                 cosine-weighted visibility (ambient occlusion) over uniform directions
 //                 (bundleVisibilityError).
+//   cut paths     a setting that ends paths early (multibounce's bundle_count <= 8): the share of
+//                 the image the longer paths carry, from the reference path tracer at a small size
+//                 with and without the cut (cutPathErrors).
 // (Sharp glossy lobes need no check: their float evaluation, which lost 4% of a 1e6 lobe, is accurate
 // to 1e-5 on the host, about 1e-4 on a GPU, since shaders/shared/CosinePower.h.)
 // A check warns when its error exceeds kTradeTolerance by more than its own noise, and names the
@@ -84,6 +87,14 @@ TradeError shadowCubeError(const EmbreeScene& rt, const std::vector<ViewPoint>& 
 TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPoint>& points,
                                  std::uint32_t resolution, bool fitVisible,
                                  std::uint32_t directionsPerPoint);
+
+// Relative error of the image mean (sum of every pixel's r + g + b) when paths end after each of
+// `segments` segments, against paths of up to 64: the reference path tracer at a small size
+// (kCutPathWidth pixels wide, the camera's aspect), the same seed and samples for each cut so the
+// difference holds the cut-off paths, not noise; stderr from the renders' variance of the mean.
+inline constexpr int kCutPathWidth = 24;
+inline constexpr std::uint32_t kCutPathSamples = 64;
+std::vector<TradeError> cutPathErrors(const Scene& scene, const std::vector<std::uint32_t>& segments);
 
 // The warning lines (empty: nothing to say) for `mode` on `scene`, with the fix for each.
 std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene);

@@ -124,6 +124,14 @@ Image ReferenceRenderer::varianceOfMean() const {
     return img;
 }
 
+Image ReferenceRenderer::halfMean(int half) const {
+    Image img(mWidth, mHeight);
+    for (std::size_t i = 0; i < img.pixelCount(); ++i) {
+        if (mHalfCounts[half][i] > 0) img.pixels()[i] = glm::vec3(mHalfSums[half][i] / double(mHalfCounts[half][i]));
+    }
+    return img;
+}
+
 std::vector<BadSample> ReferenceRenderer::badSamples() const {
     std::lock_guard lock(mBadMutex);
     return mBad;

@@ -45,6 +45,9 @@ public:
     // samples are independently scrambled, so this is an unbiased (one-degree-of-freedom) estimate
     // of the variance of the mean, valid for quasi-random samples where the sample variance is not.
     Image varianceOfMean() const;
+    // The mean of the even (half 0) or odd (half 1) samples alone: two independent estimates, from
+    // which the variance of any difference of two renders' means can be estimated the same way.
+    Image halfMean(int half) const;
     std::uint64_t nonFiniteSamples() const { return mNonFinite; }
     std::vector<BadSample> badSamples() const;
 

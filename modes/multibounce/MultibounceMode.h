@@ -95,6 +95,7 @@ public:
     TradeSettings trades() const override;
 
 private:
+    bool distinctBundles() const; // a path draws its bundles without replacement
     struct Gpu;
     void buildBundles(const IterationInfo& info);
     std::uint32_t pathsPerPixel() const { return static_cast<std::uint32_t>(mSettings.getInt(kPathsPerPixel)); }

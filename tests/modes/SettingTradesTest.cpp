@@ -5,9 +5,15 @@
 #include "modes/Mode.h"
 #include "modes/Registry.h"
 #include "reference/EmbreeScene.h"
+#include "reference/ReferenceRenderer.h"
+#include "scene/SceneLoader.h"
 #include "support/AnalyticScenes.h"
+#include "support/TestFiles.h"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
 
 using namespace bl;
 
@@ -124,5 +130,50 @@ TEST(SettingTrades, SkylightSaysWhenALobeIsNarrowerThanItsDirections) {
     s.materials[0].exponentU = s.materials[0].exponentV = 1e4f;
     for (const std::string& w : settingTrades(*createMode("raster", {"shadow_resolution=2048"}), s)) {
         EXPECT_EQ(w.find("glossy exponent"), std::string::npos) << w; // raster evaluates the lobe itself
+    }
+}
+
+// Multibounce with K <= 8 bundles ends a path after K + 2 segments (each bundle once per path).
+// The check's estimate of what the cut leaves out agrees with an independent one (other seed, 4x
+// the samples) within three combined standard errors; a cut at the uncut length leaves out nothing;
+// K = 2 on the point-lit Cornell box warns (about -10 %) with the smallest K that brings it under
+// 1 %, and K = 16 (no cut) says nothing about paths.
+TEST(SettingTrades, MultibounceSaysWhatSmallBundleCountsCut) {
+    Scene s = loadScene(bl::test::sourcePath("data/cornell-box/cornell-point.toml"));
+    const std::vector<TradeError> e = cutPathErrors(s, {4, 64});
+    ASSERT_EQ(e.size(), 2u);
+    EXPECT_EQ(e[1].error, 0.0);
+    EXPECT_LT(e[0].error, -0.05);
+
+    Scene small = s;
+    small.camera.resolution = {kCutPathWidth, kCutPathWidth};
+    auto total = [&](int maxSegments, double& variance) {
+        ReferenceSettings settings;
+        settings.path.maxSegments = maxSegments;
+        ReferenceRenderer r(small, 0.0, settings);
+        for (std::uint32_t i = 0; i < 4 * kCutPathSamples; ++i) r.renderPass(i, 12345u);
+        double sum = 0.0;
+        for (const glm::vec3& p : r.mean().pixels()) sum += double(p.x + p.y + p.z);
+        const Image v = r.varianceOfMean();
+        for (const glm::vec3& p : v.pixels()) variance += double(p.x + p.y + p.z);
+        return sum;
+    };
+    double varianceFull = 0.0, varianceCut = 0.0;
+    const double full = total(64, varianceFull);
+    const double cut = total(4, varianceCut);
+    const double independent = cut / full - 1.0;
+    const double stderrIndependent = std::sqrt(varianceFull + varianceCut) / full; // independent halves: conservative
+    std::printf("cut at 4 segments: check %.4f +- %.4f, independent %.4f +- %.4f\n", e[0].error, e[0].stderr_, independent,
+                stderrIndependent);
+    EXPECT_NEAR(e[0].error, independent, 3.0 * std::hypot(e[0].stderr_, stderrIndependent));
+
+    bool said = false;
+    for (const std::string& w : settingTrades(*createMode("multibounce", {"bundle_count=2", "directions=random"}), s)) {
+        said = said || (w.find("bundle_count=2 ends every path after 4 segments") != std::string::npos &&
+                        w.find("fix: bundle_count=") != std::string::npos);
+    }
+    EXPECT_TRUE(said);
+    for (const std::string& w : settingTrades(*createMode("multibounce", {"bundle_count=16"}), s)) {
+        EXPECT_EQ(w.find("ends every path"), std::string::npos) << w;
     }
 }

@@ -107,22 +107,27 @@ BL_CONST uint kMultibouncePointsGroupSize = 64u;
 // near 1 (white furnace) still ends, at the cost of 5% more variance per surviving segment.
 BL_CONST float kMultibounceMaxSurvival = 0.95f;
 
-// Bundles a path excludes when it draws the next one: those of its last 8 segments (fewer when
-// K <= 8: all but one). Drawing without replacement is exact for the whole path; beyond 8
-// segments Russian roulette has ended nearly every path, and a bundle reused after 8 segments is
-// no longer the direction back to the previous vertex.
+// Bundles a path excludes when it draws the next one: those of its last 8 segments, all of them
+// when K <= 8. A path that has drawn every one of K <= 8 bundles ends there: drawing again would
+// repeat a cycle of the same K lines (K = 1: back and forth along one line; K = 2..9 with a window
+// of K - 1, the one bundle left, a fixed cycle), whose weights f cos / p_r multiply without the
+// independence they assume; measured on the point-lit Cornell box (32^2, 2048 directions, seeds
+// 1-3) such paths made random-direction images 2x to 300x too bright at K = 2 and 3. Ending them
+// keeps the paths of up to K bundle segments exact and drops the longer ones (their energy is the
+// bias, stated by SettingTrades before rendering). For K > 8 a bundle can come back 9 or more
+// segments later, when Russian roulette has ended nearly every path.
 BL_CONST uint kMultibounceRecentBundles = 8u;
 
 // The bundles of a path's last segments, oldest first: `count` of at most `size` =
-// min(kMultibounceRecentBundles, K - 1), so at least one bundle is always left to draw.
+// min(kMultibounceRecentBundles, K).
 //
 // Only for independent random directions (kMultibounceDistinctBundles; size 0 otherwise: every draw
 // uniform over all K). Halton directions are stratified within an iteration: each bundle stands for
 // its stratum, and excluding the one a path arrived by leaves the stratum around -d unsampled.
 // Measured on the point-lit Cornell box (32^2, 32 iterations, K = 64, seeds 1..4, against a
 // 2048-spp reference): indirect2 0.99..1.04 with replacement, 0.94..0.98 without; the retro point
-// mass of the draw with replacement (issue 19, B2) then stays, small at the default K = 64 (the
-// bright-spot box of BundleSequenceTest.cpp: indirect2 mean 0.996 at K = 64, 0.90 at K = 4).
+// mass of the draw with replacement (issue 19, B2) then stays: small at the default K = 64, large
+// at small K (SettingTrades warns).
 struct MultibounceBundleWindow {
     uint bundles[kMultibounceRecentBundles];
     uint count;
@@ -135,8 +140,13 @@ BL_INLINE MultibounceBundleWindow blMultibounceBundleWindow(uint slots, bool dis
         w.bundles[i] = 0u;
     }
     w.count = 0u;
-    w.size = distinct ? min(kMultibounceRecentBundles, slots > 0u ? slots - 1u : 0u) : 0u;
+    w.size = distinct ? min(kMultibounceRecentBundles, slots) : 0u;
     return w;
+}
+
+// False when a path without replacement has drawn all K bundles (K <= 8): it ends.
+BL_INLINE bool blMultibounceBundleLeft(MultibounceBundleWindow w, uint slots) {
+    return w.size == 0u || w.count < slots;
 }
 
 // The bundle of the next segment from u in [0, 1): uniform over the `slots` bundles not in the

@@ -9,7 +9,7 @@
 // planes, x's own triangle skipped (bundle/Traversal.glsl: blBundleSurfaceNearest), so the
 // winding of the faces does not matter and thin walls do not leak. With random directions the
 // bundles are drawn without replacement along a path (blMultibouncePickBundle): d is never the
-// direction the path arrived along. At every vertex: emission when the path meets an emitter's front face, point/spot light
+// direction the path arrived along, and a path that has used all K <= 8 bundles ends. At every vertex: emission when the path meets an emitter's front face, point/spot light
 // by cube shadow maps, the environment when the path escapes.
 // Weights are f cos / p_r; Russian roulette after push.rrSegments segments. Textured albedo at every
 // vertex from the packed texture buffer (gpu/PackedTextureLookup.glsl: no descriptor indexing),
@@ -102,6 +102,9 @@ void tracePath(vec3 x0, uint own0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 e
     for (uint segments = 1u; segments < push.maxSegments; ++segments) {
         layers[layerOf(segments + 1u)] += throughput * directLight(x, n, m, albedo, wo);
 
+        if (!blMultibounceBundleLeft(window, push.pool.slots)) {
+            break; // every one of K <= 8 bundles drawn: no direction independent of the path's is left
+        }
         vec2 u = blRandom2(rng);
         uint k = blMultibouncePickBundle(window, u.x, push.pool.slots);
         blMultibounceRemember(window, k);
