@@ -37,12 +37,6 @@ std::string params(const Task& t) {
     return s;
 }
 
-double gpuMs(const PassTimes& passes) {
-    double total = 0.0;
-    for (const PassTime& p : passes) total += p.totalMs;
-    return total;
-}
-
 } // namespace
 
 TaskRunner::TaskRunner(const ExperimentConfig& config, const ReferenceCache& references, std::string outDir)
@@ -132,7 +126,7 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
     auto checkpoint = [&]() {
         images = mode->resolve();
         writeExr((dir / ("iter-" + std::to_string(done) + ".exr")).string(), images.radiance());
-        std::string row = std::to_string(done) + "," + number(wall) + "," + number(gpuMs(mode->timings()));
+        std::string row = std::to_string(done) + "," + number(wall) + "," + number(gpuMilliseconds(mode->timings()));
         if (reference) {
             Image test = images.radiance(), ref = reference->image;
             matchResolution(test, ref);
@@ -175,7 +169,7 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
     }
     const std::uint32_t frameZeroIterations = done;
     const double frameZeroWall = wall;
-    const double frameZeroGpuMs = gpuMs(mode->timings());
+    const double frameZeroGpuMs = gpuMilliseconds(mode->timings());
     const PassTimes frameZeroPasses = mode->timings();
 
     // The other frames of an animated scene: each a new estimate with the same budget, its image
@@ -183,7 +177,7 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
     std::string frames = "frame,scene_time,iterations,setup_seconds,wall_seconds,gpu_ms\n";
     auto frameRow = [&](std::uint32_t frame, double setup) {
         frames += std::to_string(frame) + "," + number(task.frames.timeOf(frame)) + "," + std::to_string(done) + "," +
-                  number(setup) + "," + number(wall) + "," + number(gpuMs(mode->timings())) + "\n";
+                  number(setup) + "," + number(wall) + "," + number(gpuMilliseconds(mode->timings())) + "\n";
     };
     frameRow(0, setupSeconds);
     if (task.frames.frames > 1) {

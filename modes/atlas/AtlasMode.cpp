@@ -4,6 +4,7 @@
 #include "atlas/AtlasLink.h"
 #include "base/Error.h"
 #include "base/Log.h"
+#include "base/WallSpan.h"
 #include "bundle/BundleFrame.h"
 #include "bundle/BundlePool.h"
 #include "bundle/DirectionSampler.h"
@@ -29,9 +30,9 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 namespace bl {
 
@@ -307,16 +308,16 @@ shader::AtlasDirection AtlasMode::buildBundle(const IterationInfo& info) {
     params.next = g.directions->sample(directionIndex(mIterations + 1)).omega;
 
     for (;;) {
-        const auto start = std::chrono::steady_clock::now();
-        mContext->submitAndWait([&](VkCommandBuffer cmd) {
-            g.timer.begin(cmd);
-            g.pool->recordReset(cmd);
-            g.pool->recordBuild(cmd, 0, frame, BundleGeometry::triangles(info.time), &g.timer);
-            g.pool->recordSort(cmd, 0, &g.timer);
-        });
-        g.timer.collect();
-        g.wallBuild.totalMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        ++g.wallBuild.count;
+        {
+            const WallSpan wall(g.wallBuild);
+            mContext->submitAndWait([&](VkCommandBuffer cmd) {
+                g.timer.begin(cmd);
+                g.pool->recordReset(cmd);
+                g.pool->recordBuild(cmd, 0, frame, BundleGeometry::triangles(info.time), &g.timer);
+                g.pool->recordSort(cmd, 0, &g.timer);
+            });
+            g.timer.collect();
+        }
         const BundlePoolStatus status = g.pool->status();
         if (!status.overflowed()) {
             g.nodesLast = status.requested;
@@ -431,7 +432,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
     update.sumsIndirect = params.sumsIndirect;
     update.weightIndirect = float(weightIndirect);
     update.iteration = mIterations;
-    const auto start = std::chrono::steady_clock::now();
+    std::optional<WallSpan> wall(std::in_place, g.wallExchange);
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         const std::uint32_t slots = shader::kAtlasSides * g.texelCount;
@@ -472,8 +473,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
                           VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
     });
     g.timer.collect();
-    g.wallExchange.totalMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    ++g.wallExchange.count;
+    wall.reset();
     mTotalWeight += weight;
     if (indirect) {
         mIndirectWeight += weightIndirect;

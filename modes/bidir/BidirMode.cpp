@@ -1,6 +1,7 @@
 #include "modes/bidir/BidirMode.h"
 
 #include "base/Error.h"
+#include "base/WallSpan.h"
 #include "bundle/BundleFrame.h"
 #include "gpu/CameraPass.h"
 #include "gpu/ShadowCubePass.h"
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <modes/bidir/BidirEnvironment.h>
 #include <modes/bidir/BidirShared.h>
 #include <modes/bidir/BidirTextures.h>
@@ -142,6 +144,9 @@ struct BidirMode::Gpu {
     vk::PipelineLayout pipelineLayout;
     vk::Pipeline pipeline;
     vk::GpuTimer timer;
+    // Host wall clock of each phase of a frame (submission, wait, read-back), beside the timestamps.
+    PassTime wallGbuffer{"gbuffer (wall)"}, wallBundles{"bundles (wall)"}, wallVpls{"VPLs (wall)"},
+        wallEvaluate{"shadow cubes + evaluate (wall)"};
     Bounds bounds;
     std::uint64_t nodesLast = 0;
     std::uint32_t rebuilds = 0;
@@ -432,12 +437,16 @@ void BidirMode::iterate(const IterationInfo& info) {
     // The G-buffer first: fit = visible fits this frame's bundles to the points it sees.
     const gpu::CameraSample sample = mInterleave->cameraSample(g.camera->sample(mIterations, true, info.time, info.seed),
                                                                g.camera->width(), g.camera->height());
-    mContext->submitAndWait([&](VkCommandBuffer cmd) {
-        g.timer.begin(cmd);
-        g.camera->record(cmd, sample, &g.timer);
-    });
-    g.timer.collect();
+    {
+        const WallSpan wall(g.wallGbuffer);
+        mContext->submitAndWait([&](VkCommandBuffer cmd) {
+            g.timer.begin(cmd);
+            g.camera->record(cmd, sample, &g.timer);
+        });
+        g.timer.collect();
+    }
     if (g.pool) {
+        const WallSpan wall(g.wallBundles);
         if (mSettings.getString(kFit) == "visible") g.visiblePoints = g.camera->gbuffer().visiblePoints(*mContext);
         buildBundles(info);
     }
@@ -445,6 +454,7 @@ void BidirMode::iterate(const IterationInfo& info) {
     const bool useVpls = lightCount > 0 && (strategy != shader::kBidirStrategyBundle || twoBounce);
     std::vector<shader::BidirVpl> vpls(pairs);
     if (useVpls) {
+        const WallSpan wall(g.wallVpls);
         vpls = g.rsm ? g.rsm->sample(mInterleave->sequenceBase(mIterations, pairs), pairs,
                                      static_cast<std::uint32_t>(info.seed), info.time,
                                      kVplLiftFraction * g.bounds.radius(), &g.timer)
@@ -490,6 +500,7 @@ void BidirMode::iterate(const IterationInfo& info) {
     push.bounces = static_cast<std::uint32_t>(mSettings.getInt(kBounces));
     const float minDistance = static_cast<float>(mSettings.getDouble(kTwoBounceClamp)) * g.bounds.radius();
     push.twoBounceMinDistance2 = minDistance * minDistance;
+    std::optional<WallSpan> wall(std::in_place, g.wallEvaluate);
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         if (renderShadows) {
@@ -515,6 +526,7 @@ void BidirMode::iterate(const IterationInfo& info) {
                           VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
     });
     g.timer.collect();
+    wall.reset();
     if (renderShadows) {
         mShadowTime = info.time;
     }
@@ -563,7 +575,14 @@ ImageSet BidirMode::resolve() {
     return out;
 }
 
-PassTimes BidirMode::timings() const { return mGpu ? mGpu->timer.totals() : PassTimes{}; }
+PassTimes BidirMode::timings() const {
+    if (!mGpu) return {};
+    PassTimes t = mGpu->timer.totals();
+    for (const PassTime* w : {&mGpu->wallGbuffer, &mGpu->wallBundles, &mGpu->wallVpls, &mGpu->wallEvaluate}) {
+        if (w->count > 0) t.push_back(*w);
+    }
+    return t;
+}
 
 TradeSettings BidirMode::trades() const {
     return tradeSettingsOf(mSettings, kShadowResolution, kBundleResolution, kFit);

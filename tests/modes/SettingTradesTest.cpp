@@ -153,7 +153,8 @@ TEST(SettingTrades, MultibounceSaysWhatSmallBundleCountsCut) {
         ReferenceRenderer r(small, 0.0, settings);
         for (std::uint32_t i = 0; i < 4 * kCutPathSamples; ++i) r.renderPass(i, 12345u);
         double sum = 0.0;
-        for (const glm::vec3& p : r.mean().pixels()) sum += double(p.x + p.y + p.z);
+        const Image mean = r.mean();
+        for (const glm::vec3& p : mean.pixels()) sum += double(p.x + p.y + p.z);
         const Image v = r.varianceOfMean();
         for (const glm::vec3& p : v.pixels()) variance += double(p.x + p.y + p.z);
         return sum;
