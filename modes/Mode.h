@@ -69,12 +69,18 @@ struct TradeSettings {
     bool fitVisible = false;             // frames fitted to the camera's visible points
     bool lobesByBundleDirections = false; // glossy lobes are met only by uniform bundle directions
     // A setting that ends the mode's paths early (multibounce: bundle_count <= 8 cuts a path at
-    // K + 2 segments): its key, value, the longest path kept, and the value from which none is cut;
-    // each unit of the value below that keeps one segment more. Empty key: no path is cut.
+    // K + 2 segments with point and spot lights' direct light, K + 1 where it meets an emitter or
+    // the sky): its key and value, the longest path kept from point lights and from emitters, the
+    // length the mode keeps without the cut (its max_segments), the value from which none is cut
+    // (each unit of the value below it keeps one segment more) and the value to suggest when none
+    // below that brings the cut under the tolerance. Empty key: no path is cut.
     std::string pathKey;
     std::uint32_t pathValue = 0;
     std::uint32_t pathSegments = 0;
+    std::uint32_t pathSegmentsToEmitters = 0;
+    std::uint32_t pathUncut = 0;
     std::uint32_t pathUncutFrom = 0;
+    std::uint32_t pathSuggested = 0;
     std::string pathNote; // a bias the cut comes with besides the paths it leaves out
 };
 

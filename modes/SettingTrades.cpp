@@ -317,7 +317,8 @@ double directionsPerLobeHit(const Material& m) {
                            : directionsPerLobeHit(double(m.exponentU));
 }
 
-std::vector<TradeError> cutPathErrors(const Scene& scene, const std::vector<std::uint32_t>& segments) {
+std::vector<TradeError> cutPathErrors(const Scene& scene, const std::vector<std::uint32_t>& segments,
+                                      std::uint32_t uncutSegments) {
     Scene small = scene;
     const glm::ivec2 full = scene.camera.resolution;
     small.camera.resolution =
@@ -345,7 +346,7 @@ std::vector<TradeError> cutPathErrors(const Scene& scene, const std::vector<std:
         }
         return out;
     };
-    const Totals uncut = render(64);
+    const Totals uncut = render(uncutSegments);
     std::vector<TradeError> errors;
     for (std::uint32_t n : segments) {
         const Totals cut = render(n);
@@ -390,11 +391,15 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
 
     if (!t.pathKey.empty() && t.pathSegments > 0) {
         // The cut itself and, for the fix, one segment more per unit of the setting up to the
-        // value that cuts nothing.
+        // value that cuts nothing. Where emitters or the sky light the scene, the shorter cut of
+        // paths that end on them: exact for those, an overstatement for point lights' paths.
+        const SceneFeatures f = scene.features();
+        const bool emitters = f.emissiveTriangles > 0 || f.environment;
+        const std::uint32_t segments = emitters ? t.pathSegmentsToEmitters : t.pathSegments;
         std::vector<std::uint32_t> cuts;
-        for (std::uint32_t v = t.pathValue; v < t.pathUncutFrom; ++v)
-            cuts.push_back(t.pathSegments + (v - t.pathValue));
-        const std::vector<TradeError> errors = cutPathErrors(scene, cuts);
+        for (std::uint32_t v = t.pathValue; v < t.pathUncutFrom && segments + (v - t.pathValue) < t.pathUncut; ++v)
+            cuts.push_back(segments + (v - t.pathValue));
+        const std::vector<TradeError> errors = cutPathErrors(scene, cuts, t.pathUncut);
         if (!errors.empty() && errors.front().exceeds()) {
             std::string fix;
             for (std::size_t i = 1; i < errors.size() && fix.empty(); ++i) {
@@ -402,9 +407,13 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
                     fix = "fix: " + t.pathKey + "=" + std::to_string(t.pathValue + i) + " (" + describe(errors[i]) + ")";
             }
             if (fix.empty())
-                fix = "fix: " + t.pathKey + "=" + std::to_string(t.pathUncutFrom) + " or more (no path cut)";
+                fix = "fix: " + t.pathKey + "=" + std::to_string(t.pathSuggested) + " or more (no path cut)";
             out.push_back(name + ": " + t.pathKey + "=" + std::to_string(t.pathValue) + " ends every path after " +
-                          std::to_string(t.pathSegments) + " segments, which leaves out " + describe(errors.front()) +
+                          std::to_string(segments) + " segments" +
+                          (emitters ? " where it meets an emitter or the sky (" + std::to_string(t.pathSegments) +
+                                          " with point and spot lights)"
+                                    : std::string()) +
+                          ", which leaves out " + describe(errors.front()) +
                           " of the image (the reference path tracer at " + std::to_string(kCutPathWidth) +
                           " pixels wide with and without the cut; tolerance 1 %)" +
                           (t.pathNote.empty() ? std::string() : "; " + t.pathNote) + "; " + fix);

@@ -89,12 +89,13 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
                                  std::uint32_t directionsPerPoint);
 
 // Relative error of the image mean (sum of every pixel's r + g + b) when paths end after each of
-// `segments` segments, against paths of up to 64: the reference path tracer at a small size
+// `segments` segments, against paths of up to `uncut`: the reference path tracer at a small size
 // (kCutPathWidth pixels wide, the camera's aspect), the same seed and samples for each cut so the
 // difference holds the cut-off paths, not noise; stderr from the renders' variance of the mean.
 inline constexpr int kCutPathWidth = 24;
 inline constexpr std::uint32_t kCutPathSamples = 64;
-std::vector<TradeError> cutPathErrors(const Scene& scene, const std::vector<std::uint32_t>& segments);
+std::vector<TradeError> cutPathErrors(const Scene& scene, const std::vector<std::uint32_t>& segments,
+                                      std::uint32_t uncut = 64);
 
 // The warning lines (empty: nothing to say) for `mode` on `scene`, with the fix for each.
 std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene);

@@ -18,37 +18,61 @@ def read(path, default=""):
         return default
 
 
+def load(path):
+    """A JSON file, or None when it is missing or cut short (a run stopped mid-write)."""
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return None
+
+
+def is_wall(name):
+    """A host wall-clock span around GPU passes (base/WallSpan.h, PassTime.h isWallTime)."""
+    return name.endswith(" (wall)")
+
+
 def per_pass(out):
-    """Per configuration: ms per iteration of each pass = (T(1 + F) - T(1)) / F."""
+    """Per configuration, from the pass totals after iterations 1, 1 + F and 1 + 3F (each checkpoint
+    resolves once): per iteration = ((T3 - T2) - (T2 - T1)) / F, per resolve = (T2 - T1) - F x that."""
     rows = []
     base = os.path.join(out, "passes")
     for config in sorted(os.listdir(base)) if os.path.isdir(base) else []:
         d = os.path.join(base, config)
-        first, last = os.path.join(d, "run.1.json"), os.path.join(d, "run.json")
-        if not (os.path.exists(first) and os.path.exists(last)):
+        checkpoints = sorted(int(f.split(".")[1]) for f in os.listdir(d) if f.count(".") == 2 and f.endswith(".json"))
+        runs = [load(os.path.join(d, f"run.{n}.json")) for n in checkpoints] + [load(os.path.join(d, "run.json"))]
+        if len(runs) != 3 or any(r is None for r in runs):
             rows.append({"config": config, "error": "the run did not finish (see its log)"})
             continue
-        a, b = json.load(open(first)), json.load(open(last))
-        n1, n2 = a["iterations"], b["iterations"]
+        a, b, c = runs
+        n1, n2, n3 = a["iterations"], b["iterations"], c["iterations"]
         frames = n2 - n1
-        pa = {p["name"]: p for p in a["passes"]}
-        passes, first_only = {}, {}
-        for p in b["passes"]:
-            before = pa.get(p["name"])
-            if before and before["count"] == p["count"]:
-                first_only[p["name"]] = p["total_ms"]  # e.g. the lights' shadow maps of a static scene
-            else:
-                passes[p["name"]] = (p["total_ms"] - (before["total_ms"] if before else 0.0)) / frames
+        if frames <= 0 or n3 - n2 != 2 * frames:
+            rows.append({"config": config, "error": f"unexpected iterations {n1}, {n2}, {n3}"})
+            continue
+        total = [{p["name"]: p for p in r["passes"]} for r in runs]
+        passes, per_resolve, first_only = {}, {}, {}
+        for name, p in total[2].items():
+            t1, t2, t3 = (total[i][name]["total_ms"] if name in total[i] else 0.0 for i in range(3))
+            if name in total[0] and total[0][name]["count"] == p["count"]:
+                first_only[name] = p["total_ms"]  # e.g. the lights' shadow maps of a static scene
+                continue
+            it = ((t3 - t2) - (t2 - t1)) / frames
+            passes[name] = it
+            resolve = (t2 - t1) - frames * it
+            if abs(resolve) > 1e-3 and not is_wall(name):
+                per_resolve[name] = resolve
         rows.append({
-            "config": config, "mode": b["mode"], "scene": os.path.basename(b["scene"]),
-            "width": b["width"], "height": b["height"], "iterations": [n1, n2],
-            "settings": b.get("settings", {}), "setup_seconds": b["setup_seconds"],
-            "wall_ms_per_iteration": (b["wall_seconds"] - a["wall_seconds"]) * 1000.0 / frames,
+            "config": config, "mode": c["mode"], "scene": os.path.basename(c["scene"]),
+            "width": c["width"], "height": c["height"], "iterations": [n1, n2, n3],
+            "settings": c.get("settings", {}), "setup_seconds": c["setup_seconds"],
+            # Wall time counts iterate() only (no resolve): the last 3F iterations.
+            "wall_ms_per_iteration": (c["wall_seconds"] - a["wall_seconds"]) * 1000.0 / (n3 - n1),
             "first_iteration_wall_ms": a["wall_seconds"] * 1000.0,
-            # Passes named "(wall)" are host-timed spans around GPU passes: not added twice.
-            "gpu_ms_per_iteration": sum(v for k, v in passes.items() if not k.endswith("(wall)")), "passes_ms_per_iteration": passes,
+            "gpu_ms_per_iteration": sum(v for k, v in passes.items() if not is_wall(k)),
+            "passes_ms_per_iteration": passes, "resolve_ms": per_resolve,
             "first_iteration_only_ms": first_only,
-            "device": b["environment"]["device"],
+            "device": c["environment"]["device"],
         })
     return rows
 
@@ -58,8 +82,8 @@ def bundles(out):
     base = os.path.join(out, "bundles")
     for f in sorted(os.listdir(base)) if os.path.isdir(base) else []:
         if f.endswith(".json"):
-            j = json.load(open(os.path.join(base, f)))
-            for r in j["results"]:
+            j = load(os.path.join(base, f))
+            for r in (j or {}).get("results", []):
                 rows.append({"scene": os.path.basename(j["scene"]), "triangles": j["triangles"], "backend": j["backend"],
                              "directions": j["directions"], **r})
     return rows
@@ -113,20 +137,22 @@ def main(out):
                + (", ".join(" ".join(s[:2]) for s in skipped) or "none"), ""]
 
     md += ["## Milliseconds per pass and iteration", "",
-           "(T(1+F) − T(1)) / F from the modes' GPU timestamps in one process (a checkpoint after iteration 1): set-up "
+           "From the modes' GPU timestamps in one process after iterations 1, 1 + F and 1 + 3F (each checkpoint resolves "
+           "the image once): per iteration ((T3 − T2) − (T2 − T1)) / F, per resolve what is left of T2 − T1; set-up "
            "(scene upload, BVH, atlas, pipelines) and the first iteration's shader compilation fall out. Wall = the mode's "
-           "iterate() calls (host work and waits included). Passes that ran in the first iteration only (the lights' "
-           "shadow maps of a static scene) are listed apart with their one time.", "",
-           "| mode | scene | size | F | set-up s | first iteration wall ms | wall ms/it | GPU ms/it | passes (ms/it) | first iteration only (ms) |",
-           "|---|---|---|---|---|---|---|---|---|---|"]
+           "iterate() calls (host work and waits included; \"(wall)\" passes are host spans around GPU passes). Passes "
+           "that ran in the first iteration only (the lights' shadow maps of a static scene) are listed apart.", "",
+           "| mode | scene | size | F | set-up s | first iteration wall ms | wall ms/it | GPU ms/it | passes (ms/it) | per resolve (ms) | first iteration only (ms) |",
+           "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in summary["passes"]:
         if "error" in r:
-            md.append(f"| {r['config']} | — | — | — | — | — | — | — | {r['error']} | — |")
+            md.append(f"| {r['config']} | — | — | — | — | — | — | — | {r['error']} | — | — |")
             continue
         passes = ", ".join(f"{k} {v:.2f}" for k, v in sorted(r["passes_ms_per_iteration"].items(), key=lambda kv: -kv[1]))
         md.append(f"| {r['mode']} | {r['scene']} | {r['width']}×{r['height']} | {r['iterations'][1] - r['iterations'][0]} | "
                   f"{r['setup_seconds']:.2f} | {r['first_iteration_wall_ms']:.1f} | {r['wall_ms_per_iteration']:.2f} | "
                   f"{r['gpu_ms_per_iteration']:.2f} | {passes} | "
+                  f"{', '.join(f'{k} {v:.2f}' for k, v in r['resolve_ms'].items()) or '—'} | "
                   f"{', '.join(f'{k} {v:.2f}' for k, v in r['first_iteration_only_ms'].items()) or '—'} |")
 
     md += ["", "## Bundles against the rasterization floor", "",

@@ -2,8 +2,8 @@
 # The GPU benchmark kit's one call (benchmarks, not pass/fail): on the machine's Vulkan device, within
 # a time budget (default 8 minutes),
 #   1. every mode's milliseconds per pass and iteration ([TO12] Table 1's shape): each configuration
-#      renders 1 + F iterations with a checkpoint after the first; a pass's cost per iteration is the
-#      difference over F, which leaves out set-up and first-use shader compilation;
+#      renders 1 + 3F iterations with checkpoints after 1 and 1 + F; from the three pass totals, a
+#      pass's cost per iteration and per resolve, without set-up and first-use shader compilation;
 #   2. bundle build + walk against the rasterization floor, both build backends, Sponza and the bunny;
 #   3. each mode against the path tracer at equal time on this machine's cores (the experiment runner;
 #      relMSE against a 1024-spp reference);
@@ -44,6 +44,8 @@ step_end=$start
 step() { step_end=$((start + budget * $1 / 100)); }
 remaining() { echo $((step_end - $(date +%s))); }
 log() { echo "[$(($(date +%s) - start)) s] $*" | tee -a "$out/log.txt"; }
+# status EXIT_CODE: a step's line in steps.txt; 124 is `timeout` ending it at the budget (skipped).
+status() { case $1 in 0) echo ok ;; 124) echo "skipped (budget: stopped at its share)" ;; *) echo "failed (exit $1)" ;; esac; }
 : >"$out/steps.txt" # one line per render / benchmark: kind, name, status
 
 # The device. A machine whose loader finds no driver by itself (a container with the NVIDIA driver
@@ -54,6 +56,7 @@ if ! "$bl" devices >"$out/devices.txt" 2>&1 || [[ ! -s "$out/devices.txt" ]]; th
         if [[ -f "$icd" ]]; then
             export VK_DRIVER_FILES=$icd VK_ICD_FILENAMES=$icd
             "$bl" devices >"$out/devices.txt" 2>&1 && [[ -s "$out/devices.txt" ]] && break
+            unset VK_DRIVER_FILES VK_ICD_FILENAMES # this one did not work: leave the loader's own search
         fi
     done
 fi
@@ -104,18 +107,21 @@ for config in "${configs[@]}"; do
     for kv in $settings; do sets+=(--set "$kv"); done
     dir=$out/passes/$mode-$name
     mkdir -p "$dir"
-    n=$((frames + 1))
+    n=$((1 + 3 * frames))
+    rm -f "$dir"/run* # a reused OUTDIR must not summarise an older run
     left=$(remaining)
     if ((left < 20)); then
         echo "passes $mode-$name skipped (budget)" >>"$out/steps.txt"; log "skip $mode $name"; continue
     fi
     log "passes: $mode $name, $n iterations"
-    # One process: the checkpoint after iteration 1 records the passes so far, and the difference to
-    # the end is F iterations with set-up and first-use shader compilation left out.
+    # One process, checkpoints after iterations 1 and 1 + F, the end after 1 + 3F: every checkpoint
+    # resolves the image (atlas times its resolve passes), so the two differences hold F and 2F
+    # iterations plus one resolve each; their difference is F iterations alone (set-up, first-use
+    # shader compilation and resolves left out), and the resolve is what remains of the first.
     timeout "$left" "$bl" render "$scene" --mode "$mode" --width "$width" --height "$height" --iterations "$n" \
-        --checkpoint 1 "${sets[@]}" "${device[@]}" --out "$dir/run.exr" >"$dir/run.log" 2>&1
+        --checkpoint 1 --checkpoint $((1 + frames)) "${sets[@]}" "${device[@]}" --out "$dir/run.exr" >"$dir/run.log" 2>&1
     rc=$?
-    echo "passes $mode-$name $([[ $rc == 0 ]] && echo ok || echo "failed (exit $rc)")" >>"$out/steps.txt"
+    echo "passes $mode-$name $(status $rc)" >>"$out/steps.txt"
 done
 
 step 65
@@ -136,7 +142,7 @@ for entry in "${bench_scenes[@]}"; do
         timeout "$left" "$bl" bench bundles "$scene" "${res[@]}" --directions "$dirs" --backend "$backend" "${device[@]}" \
             --json "$out/bundles/$name-$backend.json" >"$out/bundles/$name-$backend.log" 2>&1
         rc=$?
-        echo "bundles $name-$backend $([[ $rc == 0 ]] && echo ok || echo "failed (exit $rc)")" >>"$out/steps.txt"
+        echo "bundles $name-$backend $(status $rc)" >>"$out/steps.txt"
     done
 done
 
@@ -208,7 +214,7 @@ else
     log "equal time: $seconds s per task"
     timeout "$left" "$bl" run "$out/equal-time.toml" --out "$out/equal-time" "${device[@]}" >"$out/equal-time.log" 2>&1
     rc=$?
-    echo "equal-time all $([[ $rc == 0 ]] && echo ok || echo "failed (exit $rc)")" >>"$out/steps.txt"
+    echo "equal-time all $(status $rc)" >>"$out/steps.txt"
 fi
 
 log "summary"

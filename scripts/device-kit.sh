@@ -3,7 +3,8 @@
 # the C and C++ runtimes (Embree, TBB, OpenEXR, OpenMesh, toml++, stb, the Vulkan loader, ...), the
 # benchmark scenes (data/ and the files of ../shared/data they name) and scripts/device-bench.sh,
 # into one .tar.gz of at most 60 MiB (checked: a bigger kit is an error, not a surprise on the
-# other machine). On any machine with a Vulkan 1.3 driver:
+# other machine). On any x86-64 Linux with a Vulkan 1.3 driver and a C/C++ runtime at least as new as
+# the build machine's (Debian 12: glibc 2.36, GCC 12's libstdc++):
 #   tar xzf bundlelab-kit.tar.gz && bundlelab-kit/bundlelab/scripts/device-bench.sh OUTDIR
 #
 #   scripts/device-kit.sh [ARCHIVE] [BUILD_DIR]     (default: build/bundlelab-kit.tar.gz, build/)

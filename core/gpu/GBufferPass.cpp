@@ -106,10 +106,16 @@ void GBufferPass::record(VkCommandBuffer cmd, const shader::GpuCamera& camera, g
 }
 
 std::vector<glm::vec3> GBufferPass::visiblePoints(const vk::Context& ctx) const {
-    std::vector<std::byte> raw = mAttachments[shader::kGBufferPosition].download(ctx, VK_IMAGE_LAYOUT_GENERAL);
-    const auto* p = reinterpret_cast<const glm::vec4*>(raw.data());
+    const std::size_t pixels = std::size_t(mWidth) * mHeight;
+    if (!mPositionReadback) {
+        mPositionReadback = std::make_unique<vk::Buffer>(ctx, VkDeviceSize(pixels * sizeof(glm::vec4)),
+                                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
+    }
+    mAttachments[shader::kGBufferPosition].downloadInto(ctx, VK_IMAGE_LAYOUT_GENERAL, *mPositionReadback);
+    const auto* p = static_cast<const glm::vec4*>(mPositionReadback->data());
     std::vector<glm::vec3> points;
-    for (std::size_t i = 0; i < std::size_t(mWidth) * mHeight; ++i) {
+    points.reserve(pixels);
+    for (std::size_t i = 0; i < pixels; ++i) {
         if (p[i].w > 0.0f) points.emplace_back(p[i]);
     }
     return points;

@@ -5,12 +5,14 @@
 
 #include "gpu/GpuScene.h"
 #include "gpu/RecordedUniform.h"
+#include "vk/Buffer.h"
 #include "vk/Descriptors.h"
 #include "vk/GpuTimer.h"
 #include "vk/Pipeline.h"
 
 #include <array>
 #include <glm/glm.hpp>
+#include <memory>
 #include <vector>
 #include <shared/Bindings.h>
 
@@ -51,6 +53,9 @@ private:
     std::vector<VkDescriptorSet> mMaterialSets;
     vk::PipelineLayout mPipelineLayout;
     vk::Pipeline mPipeline;
+    // visiblePoints' readback of the position attachment, made on first use and kept: modes that
+    // fit bundles to the visible points read it back every frame.
+    mutable std::unique_ptr<vk::Buffer> mPositionReadback;
 };
 
 } // namespace bl::gpu

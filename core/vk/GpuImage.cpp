@@ -112,6 +112,18 @@ void GpuImage::upload(const Context& ctx, const void* texels, VkDeviceSize bytes
 std::vector<std::byte> GpuImage::download(const Context& ctx, VkImageLayout layout, std::uint32_t layer) const {
     const VkDeviceSize bytes = VkDeviceSize(mDesc.width) * mDesc.height * bytesPerTexel(mDesc.format);
     Buffer staging(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
+    downloadInto(ctx, layout, staging, layer);
+    std::vector<std::byte> out(bytes);
+    std::memcpy(out.data(), staging.data(), bytes);
+    return out;
+}
+
+void GpuImage::downloadInto(const Context& ctx, VkImageLayout layout, const Buffer& staging, std::uint32_t layer) const {
+    const VkDeviceSize bytes = VkDeviceSize(mDesc.width) * mDesc.height * bytesPerTexel(mDesc.format);
+    if (staging.size() < bytes) {
+        throw Error("image download: a readback buffer of " + std::to_string(staging.size()) + " bytes for " +
+                    std::to_string(bytes));
+    }
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         ImageTransition toSrc;
         toSrc.oldLayout = layout;
@@ -131,9 +143,6 @@ std::vector<std::byte> GpuImage::download(const Context& ctx, VkImageLayout layo
         // The fence alone does not make device writes visible to host reads.
         memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_PIPELINE_STAGE_2_HOST_BIT);
     });
-    std::vector<std::byte> out(bytes);
-    std::memcpy(out.data(), staging.data(), bytes);
-    return out;
 }
 
 Sampler makeSampler(VkDevice device, VkFilter filter, VkSamplerAddressMode addressU,

@@ -8,6 +8,8 @@
 
 namespace bl::vk {
 
+class Buffer;
+
 struct GpuImageDesc {
     std::uint32_t width = 1;
     std::uint32_t height = 1;
@@ -33,6 +35,9 @@ public:
     void upload(const Context& ctx, const void* texels, VkDeviceSize bytes);
     // Copies one layer, currently in `layout`, back to the host; the layout is kept.
     std::vector<std::byte> download(const Context& ctx, VkImageLayout layout, std::uint32_t layer = 0) const;
+    // The same copy into a caller's readback buffer of at least width * height texels (kept across
+    // calls by those that read back every frame: no staging allocation per call).
+    void downloadInto(const Context& ctx, VkImageLayout layout, const Buffer& readback, std::uint32_t layer = 0) const;
 
 private:
     GpuImageDesc mDesc;

@@ -19,6 +19,16 @@ def med(values, spec):
     return f"{m:{spec}} ({min(values):{spec}}–{max(values):{spec}})" if len(values) > 1 else f"{m:{spec}}"
 
 
+def matching(runs, section, key, row):
+    """The row of each run with the same key (runs that skipped or failed it are left out)."""
+    out = []
+    for run in runs:
+        r = next((r for r in run[section] if "error" not in r and key(r) == key(row)), None)
+        if r is not None:
+            out.append(r)
+    return out
+
+
 def main(d):
     runs = [json.load(open(f)) for f in sorted(glob.glob(os.path.join(d, "summary*.json")))]
     if not runs:
@@ -27,31 +37,30 @@ def main(d):
     md = [f"# Device benchmark, medians over {len(runs)} runs", "",
           f"- device: {'; '.join(first['devices'])}", f"- cpu: {first['machine'].get('cpu', '?')}",
           f"- revision: {first['machine'].get('revision', '?')}; kit: `scripts/device-kit.sh`, run: "
-          "`scripts/device-bench.sh OUT --budget 330`", "",
-          "## Milliseconds per iteration (640×360)", "",
-          "| mode | scene | set-up s | wall ms/it | GPU ms/it | largest passes (ms/it) |", "|---|---|---|---|---|---|"]
+          "`scripts/device-bench.sh OUT`", "",
+          "## Milliseconds per iteration", "",
+          "| mode | scene | size | set-up s | wall ms/it | GPU ms/it | largest passes (ms/it) |", "|---|---|---|---|---|---|---|"]
     for row in first["passes"]:
         if "error" in row:
             continue
-        same = [next(r for r in run["passes"] if r["config"] == row["config"]) for run in runs]
+        same = matching(runs, "passes", lambda r: r["config"], row)
         names = sorted(row["passes_ms_per_iteration"], key=lambda k: -row["passes_ms_per_iteration"][k])[:4]
         passes = ", ".join(f"{k} {med([s['passes_ms_per_iteration'].get(k) for s in same], '.2f')}" for k in names)
-        md.append(f"| {row['mode']} | {row['scene']} | {med([s['setup_seconds'] for s in same], '.2f')} | "
+        md.append(f"| {row['mode']} | {row['scene']} | {row['width']}×{row['height']} | "
+                  f"{med([s['setup_seconds'] for s in same], '.2f')} | "
                   f"{med([s['wall_ms_per_iteration'] for s in same], '.2f')} | "
                   f"{med([s['gpu_ms_per_iteration'] for s in same], '.2f')} | {passes} |")
     md += ["", "## Bundles against the floor", "",
            "| scene | backend | resolution | floor ms | build ms | walk ms | (build+walk)/floor |", "|---|---|---|---|---|---|---|"]
     for row in first["bundles"]:
-        key = (row["scene"], row["backend"], row["resolution"])
-        same = [next(r for r in run["bundles"] if (r["scene"], r["backend"], r["resolution"]) == key) for run in runs]
+        same = matching(runs, "bundles", lambda r: (r["scene"], r["backend"], r["resolution"]), row)
         md.append(f"| {row['scene']} | {row['backend']} | {row['resolution']}² | {med([s['floor_ms_median'] for s in same], '.3f')} | "
                   f"{med([s['build_ms_median'] for s in same], '.3f')} | {med([s['traverse_ms_median'] for s in same], '.3f')} | "
                   f"{med([s['ratio_to_floor'] for s in same], '.2f')} |")
-    md += ["", "## Equal time against the path tracer (6 s each, 128², seed 0)", "",
+    md += ["", "## Equal time against the path tracer (equal-time.toml of each run: seconds, size, seed)", "",
            "| scene | mode | iterations | relMSE | relMSE / path tracer | image mean / reference (g) |", "|---|---|---|---|---|---|"]
     for row in first["equal_time"]:
-        key = (row["scene"], row["label"])
-        same = [next(r for r in run["equal_time"] if (r["scene"], r["label"]) == key) for run in runs]
+        same = matching(runs, "equal_time", lambda r: (r["scene"], r["label"]), row)
         md.append(f"| {row['scene']} | {row['label']} | {med([s['iterations'] for s in same], '.0f')} | "
                   f"{med([s['relmse'] for s in same], '.3g')} | {med([s['relmse_over_path_tracer'] for s in same], '.3g')} | "
                   f"{med([s['mean_ratio'][1] if s['mean_ratio'] else None for s in same], '.4f')} |")

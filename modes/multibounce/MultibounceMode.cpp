@@ -361,14 +361,20 @@ PassTimes MultibounceMode::timings() const { return mGpu ? mGpu->timer.totals() 
 TradeSettings MultibounceMode::trades() const {
     TradeSettings t = tradeSettingsOf(mSettings, kShadowResolution, kBundleResolution);
     // A path draws each of K <= 8 bundles once: it ends after K bundle segments and the direct
-    // light at their last vertex, K + 2 segments in all (shaders/modes/multibounce/paths.comp.glsl).
+    // light at their last vertex, K + 2 segments in all; emitters and the sky are met only at the
+    // end of a bundle segment, K + 1 at most (shaders/modes/multibounce/paths.comp.glsl).
     const auto k = static_cast<std::uint32_t>(mSettings.getInt(kBundleCount));
     const auto longest = static_cast<std::uint32_t>(mSettings.getInt(kMaxSegments));
     if (distinctBundles() && k <= shader::kMultibounceRecentBundles && k + 2u < longest) {
         t.pathKey = kBundleCount;
         t.pathValue = k;
         t.pathSegments = k + 2u;
+        t.pathSegmentsToEmitters = k + 1u;
+        t.pathUncut = longest;
         t.pathUncutFrom = shader::kMultibounceRecentBundles + 1u;
+        // K = 9..15 cut nothing but leave a path K - 8 bundles to draw from after 8 segments (K = 9:
+        // one, a fixed cycle; rare after Russian roulette): 16 is the value to suggest.
+        t.pathSuggested = 2u * shader::kMultibounceRecentBundles;
         if (sequenceOf(mSettings.getString(kDirections)) != DirectionSequence::Random) {
             t.pathNote = "with directions=halton a path that skips the bundles it used also skips their strata: "
                          "a further -2 to -4 % on the point-lit Cornell box (K = 2..8); directions=random has none";

@@ -5,8 +5,9 @@
 // in one BundlePool with the hit payload and depth-sorted lists, each frame covering the scene's
 // bounding sphere along a direction omega_k uniform on the sphere (Halton or independent random,
 // randomly rotated about omega_k). Then every camera path starts at the G-buffer's visible point
-// and, at each vertex x with normal n, picks a bundle k uniformly (directions = random: among
-// those its last min(8, K - 1) segments did not use, never the one it arrived by), uses
+// and, at each vertex x with normal n, picks a bundle k uniformly (directions = random, or any
+// sequence with K <= 8: among those its last 8 segments did not use, never the one it arrived by;
+// with K <= 8 the path ends once it has used all K), uses
 // d = omega_k or -omega_k (whichever lies on n's side), and finds the next vertex as the fragment
 // after x's depth along d in x's bundle pixel. For uniform directions the density of d on the hemisphere is
 //   p_r(d) = q(d) + q(-d) = 1 / (2 pi),
@@ -17,10 +18,11 @@
 //
 // Bias: the next vertex is found along the bundle pixel's centre ray, up to half a pixel diagonal
 // beside the exact ray from x, and placed where x's ray crosses that fragment's plane; it vanishes
-// as bundle_resolution grows (measured in the README). Halton directions draw with replacement: a
-// path goes back along the bundle it arrived by with probability 1 / K (a point mass standing for
-// its stratum; the reason and numbers in MultibounceShared.h); random directions draw without
-// replacement, which is exact.
+// as bundle_resolution grows (measured in the README). Halton directions with K > 8 draw with
+// replacement: a path goes back along the bundle it arrived by with probability 1 / K (a point mass
+// standing for its stratum; the reason and numbers in MultibounceShared.h); random directions draw
+// without replacement, which is exact. With K <= 8 every sequence draws without replacement and
+// paths end after K + 2 segments (K + 1 on emitters and the sky): SettingTrades states the cut.
 //
 // Memory: K bundles of R^2 pixels each need heads (4 bytes per pixel per bundle) and nodes (36
 // bytes: node, hit payload, predecessor) for every surface crossing; the pool grows to what an

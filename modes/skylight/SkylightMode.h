@@ -20,9 +20,11 @@
 //   visibility         bundle    bundle (omega and -omega for every point) or depth_map (a
 //                                directional shadow map: omega only; the comparison of [TO12])
 //   bundle_backend     auto      raster (graphics pipeline), compute (ComputeBundleRasterizer) or
-//                                auto (compute where the device has shaderInt64: on lavapipe its
+//                                auto (compute on a CPU device with shaderInt64: on lavapipe its
 //                                builds are 2.2-2.9x faster on Sponza and the bunny; experiments/
-//                                bench/results/bundles-breakdown-lavapipe-2026-11-23.md)
+//                                bench/results/bundles-breakdown-lavapipe-2026-11-23.md; raster on
+//                                GPUs: an H100 built Sponza 45-92x the floor with compute,
+//                                experiments/gpu/README.md)
 //   control_variate    off       on: each sample becomes (albedo/pi) E(n) + [V L_e f (n.d) -
 //                                L_e (albedo/pi) (n.d)] / p(d) with E(n) the unoccluded irradiance
 //                                tabulated once per map (IrradianceTable.h): same mean, and the

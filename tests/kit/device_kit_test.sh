@@ -9,6 +9,10 @@ build=$1
 out=$2/device-kit
 rm -rf "$out" && mkdir -p "$out/unpacked"
 fail() { echo "FAIL: $*"; exit 1; }
+# What device-kit.sh refuses by design is a skip here, not a failure: it packs Release builds only
+# (benchmarks of another build mislead) and needs the benchmark scenes of ../shared/data.
+grep -q 'CMAKE_BUILD_TYPE:STRING=Release' "$build/CMakeCache.txt" || { echo "SKIP: $build is not a Release build"; exit 77; }
+[[ -d "$root/../shared/data/sponza-dabrovic" ]] || { echo "SKIP: no ../shared/data"; exit 77; }
 
 "$root/scripts/device-kit.sh" "$out/kit.tar.gz" "$build" || fail "device-kit.sh failed"
 tar -C "$out/unpacked" -xzf "$out/kit.tar.gz" || fail "the kit does not unpack"

@@ -121,8 +121,9 @@ BL_CONST uint kMultibounceRecentBundles = 8u;
 // The bundles of a path's last segments, oldest first: `count` of at most `size` =
 // min(kMultibounceRecentBundles, K).
 //
-// Only for independent random directions (kMultibounceDistinctBundles; size 0 otherwise: every draw
-// uniform over all K). Halton directions are stratified within an iteration: each bundle stands for
+// For independent random directions, and for any sequence when K <= 8 (kMultibounceDistinctBundles,
+// MultibounceMode::distinctBundles; size 0 otherwise: every draw uniform over all K). Halton
+// directions are stratified within an iteration: each bundle stands for
 // its stratum, and excluding the one a path arrived by leaves the stratum around -d unsampled.
 // Measured on the point-lit Cornell box (32^2, 32 iterations, K = 64, seeds 1..4, against a
 // 2048-spp reference): indirect2 0.99..1.04 with replacement, 0.94..0.98 without; the retro point

@@ -7,8 +7,8 @@
 // directions), finds the point's place in its bundle pixel and the next fragment along d in the
 // depth-sorted list: that fragment's hit payload is the next vertex. No ray is traced. Fragments are ordered by where x's own ray crosses their
 // planes, x's own triangle skipped (bundle/Traversal.glsl: blBundleSurfaceNearest), so the
-// winding of the faces does not matter and thin walls do not leak. With random directions the
-// bundles are drawn without replacement along a path (blMultibouncePickBundle): d is never the
+// winding of the faces does not matter and thin walls do not leak. With random directions (and
+// any sequence when K <= 8) the bundles are drawn without replacement along a path (blMultibouncePickBundle): d is never the
 // direction the path arrived along, and a path that has used all K <= 8 bundles ends. At every vertex: emission when the path meets an emitter's front face, point/spot light
 // by cube shadow maps, the environment when the path escapes.
 // Weights are f cos / p_r; Russian roulette after push.rrSegments segments. Textured albedo at every
@@ -95,7 +95,7 @@ void tracePath(vec3 x0, uint own0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 e
     RandomStream rng = blRandomStream(push.seed, pixelIndex, sampleIndex);
     vec3 throughput = vec3(1.0);
     uint own = own0; // x's triangle: its fragments are x's own surface (perfect bundles)
-    // Random directions: bundles are drawn without replacement along the path (MultibounceShared.h).
+    // Random directions, or K <= 8: bundles drawn without replacement along the path (MultibounceShared.h).
     MultibounceBundleWindow window =
         blMultibounceBundleWindow(push.pool.slots, (push.flags & kMultibounceDistinctBundles) != 0u);
     // x was reached by `segments` segments; its emission is counted.

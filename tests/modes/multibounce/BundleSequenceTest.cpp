@@ -2,8 +2,8 @@
 // B2; shaders/modes/multibounce/MultibounceShared.h, the functions the path shader runs). Drawn with
 // replacement (k = floor(u K)), a path went back along the bundle it arrived by with probability
 // 1 / K: to its previous vertex again, a point mass the weight f cos / p_r treats as if it had the
-// continuous density 1 / (2 pi). With independent random directions (the window is used only
-// then) these checks are exact: the draw is uniform over the bundles the window leaves, a path
+// continuous density 1 / (2 pi). With independent random directions (the window is used for them,
+// and for any sequence when K <= 8) these checks are exact: the draw is uniform over the bundles the window leaves, a path
 // never reuses a bundle within 9 segments, and a path of K <= 8 bundles ends once it has drawn
 // them all (drawing on would repeat one: at K = 1..3 a fixed cycle whose weights diverge).
 #include <modes/multibounce/MultibounceShared.h>
