@@ -44,6 +44,23 @@ TaskRunner::TaskRunner(const ExperimentConfig& config, const ReferenceCache& ref
 
 std::string TaskRunner::directory(const Task& task) const { return (fs::path(mOutDir) / "tasks" / task.id).string(); }
 
+std::vector<std::string> TaskRunner::tradesOnce(const std::string& key, const std::string& taskId,
+                                                const std::function<std::vector<std::string>()>& check) const {
+    {
+        std::lock_guard lock(mTradesMutex);
+        const auto it = mTrades.find(key);
+        if (it != mTrades.end()) {
+            if (it->second.warnings.empty()) return {};
+            return {std::to_string(it->second.warnings.size()) + " setting warning(s) as for task " + it->second.firstTask +
+                    " (same scene, resolution, mode and settings)"};
+        }
+    }
+    std::vector<std::string> warnings = check(); // outside the lock: it may take a while
+    std::lock_guard lock(mTradesMutex);
+    mTrades.emplace(key, SaidTrades{taskId, warnings});
+    return warnings;
+}
+
 bool TaskRunner::finished(const Task& task) const {
     std::string done;
     return readFileIfExists((fs::path(directory(task)) / "done.json").string(), done) &&
@@ -77,7 +94,13 @@ void TaskRunner::run(const Task& task, vk::Context* gpu) const {
     };
     const double setupSeconds = setUp();
     for (const std::string& w : lightsLeftOut(*mode, scene)) log::warn("task " + task.id + ": " + w);
-    for (const std::string& w : settingTrades(*mode, scene)) log::warn("task " + task.id + ": " + w);
+    {
+        std::string key = entry.file + "|" + std::to_string(scene.camera.resolution.x) + "x" +
+                          std::to_string(scene.camera.resolution.y) + "|" + task.mode;
+        for (const auto& [k, v] : mode->settings().resolved()) key += "|" + k + "=" + v;
+        for (const std::string& w : tradesOnce(key, task.id, [&] { return settingTrades(*mode, scene); }))
+            log::warn("task " + task.id + ": " + w);
+    }
 
     const RunEnvironment env = currentRunEnvironment();
     const std::string deviceName = modeEntry.needsGpu ? gpu->info().describe() : "";

@@ -9,7 +9,11 @@
 #include "runner/ExperimentConfig.h"
 #include "runner/ReferenceCache.h"
 
+#include <functional>
+#include <map>
+#include <mutex>
 #include <string>
+#include <vector>
 
 namespace bl {
 
@@ -33,9 +37,21 @@ public:
     void run(const Task& task, vk::Context* gpu) const;
 
 private:
+    // What a mode's settings trade on a scene (modes/SettingTrades.h) depends on the scene, its
+    // resolution, the mode and its settings, not on the seed: checked once per such key and said
+    // once, the tasks that share it pointing to the first (the cut-path check renders the reference).
+    struct SaidTrades {
+        std::string firstTask;
+        std::vector<std::string> warnings;
+    };
+    std::vector<std::string> tradesOnce(const std::string& key, const std::string& taskId,
+                                        const std::function<std::vector<std::string>()>& check) const;
+
     const ExperimentConfig* mConfig;
     const ReferenceCache* mReferences;
     std::string mOutDir;
+    mutable std::mutex mTradesMutex;
+    mutable std::map<std::string, SaidTrades> mTrades;
 };
 
 } // namespace bl

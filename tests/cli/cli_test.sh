@@ -203,6 +203,26 @@ setting_trades)
     done
     "$bl" plan data/cornell-box/cornell.toml --mode skylight >"$out/skylight.txt" || fail "plan skylight failed"
     grep -q "warn" "$out/skylight.txt" && { cat "$out/skylight.txt"; fail "a warning for skylight at its defaults"; }
+    # The runner checks once per scene, resolution, mode and settings, not once per seed: three
+    # seeds say the warning once and point the other two tasks to it.
+    cat >"$out/trades.toml" <<EOF
+[experiment]
+name = "trades"
+seeds = [0, 1, 2]
+iterations = 1
+[[scene]]
+name = "box"
+file = "$PWD/data/cornell-box/cornell-point.toml"
+resolution = [8, 8]
+[[mode]]
+mode = "raster"
+settings = { shadow_resolution = 16 }
+EOF
+    "$bl" run "$out/trades.toml" --out "$out/trades" 2>"$out/run-stderr.txt" >/dev/null || { cat "$out/run-stderr.txt"; fail "run failed"; }
+    [[ $(grep -c "raster: the 16^2 shadow cube of light 0 misses" "$out/run-stderr.txt") -eq 1 ]] ||
+        { cat "$out/run-stderr.txt"; fail "the trade warning not said exactly once over three seeds"; }
+    [[ $(grep -c "setting warning(s) as for task" "$out/run-stderr.txt") -eq 2 ]] ||
+        { cat "$out/run-stderr.txt"; fail "the other seeds do not point to the first task's warning"; }
     ;;
 validation_clean)
     "$bl" render data/external/sponza-point.toml --mode raster --width 96 --height 64 --validation \
