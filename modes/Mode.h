@@ -68,6 +68,7 @@ struct TradeSettings {
     std::string fitKey;                  // the bundle frame's fit, when the mode lets it be set
     bool fitVisible = false;             // frames fitted to the camera's visible points
     bool lobesByBundleDirections = false; // glossy lobes are met only by uniform bundle directions
+    bool bundlesOnlyForEnvironment = false; // the mode builds bundles only for an environment's light
     // A setting that ends the mode's paths early (multibounce: bundle_count <= 8 cuts a path at
     // K + 2 segments with point and spot lights' direct light, K + 1 where it meets an emitter or
     // the sky): its key and value, the longest path kept from point lights and from emitters, the

@@ -421,7 +421,7 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
     }
 
     const bool shadows = !t.shadowKey.empty() && !scene.lights.empty();
-    const bool bundles = !t.bundleKey.empty();
+    const bool bundles = !t.bundleKey.empty() && (!t.bundlesOnlyForEnvironment || scene.features().environment);
     if (!shadows && !bundles)
         return out;
     bool anyTriangles = false;

@@ -585,7 +585,12 @@ PassTimes BidirMode::timings() const {
 }
 
 TradeSettings BidirMode::trades() const {
-    return tradeSettingsOf(mSettings, kShadowResolution, kBundleResolution, kFit);
+    TradeSettings t = tradeSettingsOf(mSettings, kShadowResolution, kBundleResolution, kFit);
+    // strategy = vpl with one bounce pairs its VPLs with no bundle (setScene: pairBundles); only an
+    // environment's bundles are left to judge.
+    t.bundlesOnlyForEnvironment = strategyOf(mSettings.getString(kStrategy)) == shader::kBidirStrategyVpl &&
+                                  mSettings.getInt(kBounces) < 2;
+    return t;
 }
 
 } // namespace bl

@@ -203,6 +203,14 @@ setting_trades)
     done
     "$bl" plan data/cornell-box/cornell.toml --mode skylight >"$out/skylight.txt" || fail "plan skylight failed"
     grep -q "warn" "$out/skylight.txt" && { cat "$out/skylight.txt"; fail "a warning for skylight at its defaults"; }
+    # bidir's VPL strategy with one bounce builds no bundle on a scene without environment: its
+    # bundle_resolution trades nothing there (MIS, which builds them, is judged).
+    "$bl" plan data/cornell-box/cornell-point.toml --mode bidir --set strategy=vpl --set bounces=1 \
+        --set bundle_resolution=16 >"$out/bidir-vpl.txt" || fail "plan bidir vpl failed"
+    grep -q "bundles of 16^2" "$out/bidir-vpl.txt" && { cat "$out/bidir-vpl.txt"; fail "a bundle warning where bidir builds none"; }
+    "$bl" plan data/cornell-box/cornell-point.toml --mode bidir --set strategy=mis --set bounces=1 \
+        --set bundle_resolution=16 >"$out/bidir-mis.txt" || fail "plan bidir mis failed"
+    grep -q "warn  bidir: bundles of 16^2" "$out/bidir-mis.txt" || { cat "$out/bidir-mis.txt"; fail "no bundle warning for MIS"; }
     # The runner checks once per scene, resolution, mode and settings, not once per seed: three
     # seeds say the warning once and point the other two tasks to it.
     cat >"$out/trades.toml" <<EOF
