@@ -517,6 +517,13 @@ AtlasMode::TexelRadiance AtlasMode::readTexels() const {
     return out;
 }
 
+glm::vec3 AtlasMode::direction(std::uint32_t i) const {
+    if (!mGpu || !mGpu->directions) {
+        throw Error("atlas: direction() before the first iterate()");
+    }
+    return mGpu->directions->sample(directionIndex(i)).omega;
+}
+
 std::uint32_t AtlasMode::directionIndex(std::uint32_t i) const {
     const Gpu& g = *mGpu;
     return g.shuffleDirections ? (*g.order)(i) : i;

@@ -3,10 +3,13 @@
 #include "modes/reference/ReferenceTestSupport.h"
 #include "support/Statistics.h"
 
+#include <glm/glm.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <tuple>
 
@@ -27,6 +30,61 @@ std::vector<double> interleavedShares(std::uint32_t directions, double k, int ma
         previous = current;
     }
     return current;
+}
+
+double furnaceGivenDirections(const std::vector<glm::vec3>& directions, double k, double albedo, int cells,
+                              int samples) {
+    // Face f = 2 axis + (side > 0): the plane x_axis = side, inward normal -side e_axis; its cells
+    // indexed over the other two axes (u = (axis + 1) % 3, v = (axis + 2) % 3).
+    const int perFace = cells * cells, total = 6 * perFace;
+    const auto cellOf = [&](int face, double u, double v) {
+        const int iu = std::clamp(int((u + 1.0) * 0.5 * cells), 0, cells - 1);
+        const int iv = std::clamp(int((v + 1.0) * 0.5 * cells), 0, cells - 1);
+        return face * perFace + iu * cells + iv;
+    };
+    std::vector<double> sum(std::size_t(total), 0.0), received(std::size_t(total), 0.0);
+    double weightSum = 0.0;
+    for (std::size_t j = 0; j < directions.size(); ++j) {
+        const glm::dvec3 omega = glm::normalize(glm::dvec3(directions[j]));
+        const double scale = weightSum > 0.0 ? 1.0 / weightSum : 0.0; // the estimate of directions 1..j-1
+        for (int face = 0; face < 6; ++face) {
+            const int axis = face / 2, u = (axis + 1) % 3, v = (axis + 2) % 3;
+            const double side = face % 2 ? 1.0 : -1.0;
+            // The inward one of +-omega: light arrives at the face from the surface it points to.
+            const glm::dvec3 d = omega[axis] * side < 0.0 ? omega : -omega;
+            const double cosine = std::abs(omega[axis]);
+            for (int c = 0; c < perFace; ++c) {
+                double sender = 0.0;
+                for (int s = 0; s < samples * samples; ++s) {
+                    glm::dvec3 x(0.0);
+                    x[axis] = side;
+                    x[u] = -1.0 + 2.0 * ((c / cells) + (s / samples + 0.5) / samples) / cells;
+                    x[v] = -1.0 + 2.0 * ((c % cells) + (s % samples + 0.5) / samples) / cells;
+                    // Where x + t d leaves the box: the nearest face ahead.
+                    double t = std::numeric_limits<double>::infinity();
+                    int exitAxis = -1;
+                    for (int b = 0; b < 3; ++b) {
+                        if (b == axis || d[b] == 0.0) continue;
+                        const double tb = ((d[b] > 0.0 ? 1.0 : -1.0) - x[b]) / d[b];
+                        if (tb < t) t = tb, exitAxis = b;
+                    }
+                    const double ta = (-side - x[axis]) / d[axis]; // the opposite face
+                    if (ta < t) t = ta, exitAxis = axis;
+                    const glm::dvec3 y = x + t * d;
+                    const int exitFace = 2 * exitAxis + (d[exitAxis] > 0.0 ? 1 : 0);
+                    const int landed = cellOf(exitFace, y[(exitAxis + 1) % 3], y[(exitAxis + 2) % 3]);
+                    sender += 1.0 + sum[std::size_t(landed)] * scale;
+                }
+                received[std::size_t(face * perFace + c)] = 2.0 * albedo * cosine * sender / double(samples * samples);
+            }
+        }
+        const double w = std::pow(double(j + 1), k);
+        for (int c = 0; c < total; ++c) sum[std::size_t(c)] += w * received[std::size_t(c)];
+        weightSum += w;
+    }
+    double mean = 0.0;
+    for (int c = 0; c < total; ++c) mean += 1.0 + (weightSum > 0.0 ? sum[std::size_t(c)] / weightSum : 0.0);
+    return mean / double(total);
 }
 
 namespace {

@@ -6,8 +6,12 @@
 //    of what they received. The exchange is unbiased for a given sender and linear in it, so the
 //    expected estimate holds the light of b reflections with the share
 //        c(n, 0) = 1,  c(0, b) = 0 (b >= 1),  c(n, b) = sum_{j<=n} j^k c(j - 1, b - 1) / sum_{j<=n} j^k,
-//    exactly (interleavedShares). In the furnace (every texel emits 1, albedo 1/2) the expected
-//    texel is 1 + sum_b c(n, b) / 2^b: 1.99876 at 128 directions, k = 2.
+//    exactly (interleavedShares), where each direction is drawn independently of the ones before.
+//    In the furnace (every texel emits 1, albedo 1/2) the expected texel is then
+//    1 + sum_b c(n, b) / 2^b: 1.99876 at 128 directions, k = 2. A low-discrepancy sequence in its
+//    own order (Halton, the default) places direction j by the directions before it, on which
+//    the estimate it carries depends: furnaceGivenDirections (below) gives the expectation for
+//    the directions a run took.
 //
 // 2. The texel average (texelBias). Each texel stands for the area average of its surface's
 //    radiance; the exchange's estimate of it is unbiased (exact preimage areas A_T), and the view's
@@ -34,6 +38,8 @@
 
 #include "modes/Mode.h"
 #include "scene/Scene.h"
+
+#include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <vector>
@@ -76,6 +82,21 @@ struct TexelBias {
     double secondOrder = 0.0; // (a): either way
 };
 TexelBias texelBias(const Scene& scene, const Image& light, double texelSide);
+
+// The furnace (data/analytic/furnace.toml: the cube [-1, 1]^3, every face emitting 1 inward,
+// albedo `albedo`) after interleaved transfer over the given directions, in expectation over what
+// else the mode draws (the bundle grid's sub-pixel shift and rotation): the area-weighted mean of
+// the inner sides' radiance. Given the directions the exchange is linear in its sender and its
+// grid placement is independent of the directions before, so this expectation is the recursion
+// of interleavedShares run direction by direction with each direction's own transport, here
+// integrated on a grid of `cells`^2 cells per face (`samples`^2 points each; a cell receives
+// 2 albedo |cos| times the mean sender of where its points' rays along the inward one of +-omega
+// leave the box). Averaged over directions drawn independently it is furnaceExpectation's
+// closed form; over a low-discrepancy sequence in its own order it is not: direction j is placed
+// where directions 1..j-1 left gaps, so it depends on the estimate it carries (the Halton
+// shortfall of the interleaved furnace, ~0.9 / n).
+double furnaceGivenDirections(const std::vector<glm::vec3>& directions, double k, double albedo, int cells,
+                              int samples);
 
 // The bracket [lower, upper] of the expected relative mean (1 = the reference) these biases
 // allow, as the centre and half-width a tolerance test takes.
