@@ -53,6 +53,10 @@ double furnaceGivenDirections(const std::vector<glm::vec3>& directions, double k
             // The inward one of +-omega: light arrives at the face from the surface it points to.
             const glm::dvec3 d = omega[axis] * side < 0.0 ? omega : -omega;
             const double cosine = std::abs(omega[axis]);
+            if (cosine == 0.0) { // parallel to the face: it receives nothing (and no ray leaves it)
+                std::fill_n(received.begin() + face * perFace, perFace, 0.0);
+                continue;
+            }
             for (int c = 0; c < perFace; ++c) {
                 double sender = 0.0;
                 for (int s = 0; s < samples * samples; ++s) {

@@ -1,5 +1,6 @@
 // Mode atlas in the furnace: a closed box of albedo 1/2 emitting 1 inward, every radiance 2 less the
-// interleaved transfer's missing bounces (exact, AtlasBias.h); texels, image and path-length limits.
+// interleaved transfer's missing bounces (exact given the directions a run took, AtlasBias.h);
+// texels, image and path-length limits.
 #include "modes/atlas/AtlasTestFixture.h"
 #include "bundle/DirectionSampler.h"
 
@@ -129,7 +130,9 @@ std::vector<double> furnaceTexels(const Mode& mode) {
 // Checks the estimator's weight rho a_pix / (pi p_r A_T), the exact texel areas (the atlas's own
 // shares are off by 10-50% at triangle borders) and the interleaved sender: each seed's
 // area-weighted mean against its own expectation (paired) within kFurnaceTolerance, every texel
-// within kFurnaceTexelTolerance of the seeds' mean expectation (Holm over the texels). 8 seeds:
+// within kFurnaceTexelTolerance of the seeds' mean expectation (Holm over the texels). The
+// expectation takes the mode's own directions, so their distribution is DirectionSamplerTest's
+// to check, not this test's. 8 seeds:
 // mean - expectation +0.00000 +- 0.00002 (the expectations 1.9834-1.9964). Mutation: the
 // exchange's received light x 1.10 gives 2.2066 (fails).
 TEST_F(Atlas, FurnaceTexelsReachTwo) {
@@ -153,12 +156,14 @@ TEST_F(Atlas, FurnaceTexelsReachTwo) {
 // Why the expectation follows the directions (AtlasBias.h: furnaceGivenDirections), on the host:
 // averaged over 1024 seeds of 32 independent random directions it is the closed form of the
 // interleaved recursion (furnaceExpectation, 1.99052); over the Halton sequence in its own order,
-// the mode's default, it falls short by ~0.9 / n, because a Halton point fills the gaps the points
-// before it left, so direction j is not independent of the estimate it carries (with the
-// glossy transfer's shuffled order, DirectionOrder.h, the directions of a run shorter than its
-// 1024-block are a random subset: none). Tolerance 0.25% of 2, the expectation's grid (16^2
-// cells of one point per face) held to a fifth of it against 32^2 cells of 2^2 points: random
-// 1.98962 +- 0.00120, Halton 1.96643 +- 0.00031 (0.77 / n short).
+// the mode's default, it falls short, because a Halton point fills the gaps the points before it
+// left, so direction j is not independent of the estimate it carries. The shortfall grows slowly
+// against 1/n (the model over 512 seeds: 0.76 / n at 32 directions, 1.1 / n at 128, 1.3 / n at
+// 512). With the glossy transfer's shuffled order (DirectionOrder.h) the directions of a run
+// shorter than its 1024-block are a random subset: none (0.005 +- 0.009 / n, 20k seeds).
+// Tolerance 0.25% of 2 (the cube's expectation hardly depends on where in a face light lands:
+// 16^2 cells and 1 cell per face agree to 1e-6): random 1.98962 +- 0.00120, Halton 1.96643 +-
+// 0.00031.
 TEST(AtlasFurnaceExpectation, FollowsTheDirectionSequence) {
     constexpr std::uint32_t kRuns = 1024, kDirections = 32;
     const double closedForm = furnaceExpectation(kDirections), tolerance = 0.0025 * 2.0;
@@ -172,21 +177,10 @@ TEST(AtlasFurnaceExpectation, FollowsTheDirectionSequence) {
                 .push_back(bias::furnaceGivenDirections(omegas, kWeighting, 0.5, 16, 1));
         }
     }
-    // The grid's own error, against 32^2 cells of 2^2 points, on the first seeds' Halton runs.
-    double gridError = 0.0;
-    for (std::uint32_t seed : stats::seeds(8)) {
-        const DirectionSampler sampler(DirectionSequence::Halton, seed);
-        std::vector<glm::vec3> omegas;
-        for (std::uint32_t i = 0; i < kDirections; ++i) omegas.push_back(sampler.sample(i).omega);
-        gridError = std::max(gridError, std::abs(bias::furnaceGivenDirections(omegas, kWeighting, 0.5, 32, 2) -
-                                                 halton[seed - 1]));
-    }
-    EXPECT_LT(gridError, tolerance / 5.0);
     const stats::Summary r = stats::summarize(random), h = stats::summarize(halton);
     std::printf("furnace expectation after %u directions: closed form %.5f, random %.5f +- %.5f, Halton %.5f +- %.5f "
-                "(%.3f / n short); grid error %.2g\n",
-                kDirections, closedForm, r.mean, r.stderr_, h.mean, h.stderr_, (closedForm - h.mean) * kDirections,
-                gridError);
+                "(%.3f / n short)\n",
+                kDirections, closedForm, r.mean, r.stderr_, h.mean, h.stderr_, (closedForm - h.mean) * kDirections);
     EXPECT_TRUE(stats::agrees(r, closedForm, tolerance, "random directions against the closed form"));
     // Halton in its own order: short by more than the tolerance, with the seeds' noise.
     const double t = stats::studentTCritical(stats::kAlpha, double(h.n - 1));
@@ -239,9 +233,9 @@ TEST_F(Atlas, FurnaceImageIsTwo) {
 // Bounce-by-bounce transfer with path length limits in the furnace (emission 1, albedo 1/2): at most
 // 1, 2, 3 segments give 1, 1.5, 1.75 in every texel (the geometric series cut after 0, 1, 2
 // reflections), each pass's sender being exactly the previous pass's light: no interleaved
-// deficit, so the expectation is exact for independent directions (a pass's Halton directions
-// depend on the pass before, whose light they carry: the same mechanism as
-// FollowsTheDirectionSequence, -0.09% at passes of 32, inside the tolerance). kSeeds seeds of 32-direction passes; the mean within
+// deficit, so the expectation is exact (a pass's Halton directions could depend on the pass
+// before, whose light they carry, as in FollowsTheDirectionSequence; a per-face model of the
+// passes predicts < 0.01% for passes of 32). kSeeds seeds of 32-direction passes; the mean within
 // kFurnacePassTolerance, every texel within kFurnaceTexelTolerance (Holm). 8 seeds: 1.49866 +-
 // 0.0005, 1.74838 +- 0.0010 (passes of 64: 1.49985, 1.74992); the exchange's received light x
 // 1.10: 1.5485 and 1.8507 (fail).
@@ -273,4 +267,3 @@ TEST_F(Atlas, FurnacePathLengthLimits) {
         EXPECT_TRUE(elementsAgree(texels, e, kFurnaceTexelTolerance * e, what + ", texel"));
     }
 }
-

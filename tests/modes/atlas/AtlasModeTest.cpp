@@ -57,8 +57,9 @@ TEST_F(Atlas, RefusesSettingsThatMixPathLengths) {
 // and the light's outline under the ceiling, 1.9 m of contact line: 1.6%, second order 0.08%):
 // the bracket [0.977, 1.001] of the reference. 512 directions per seed: at 128 the seeds' mean
 // was 0.960 of the reference, below the derived deficit (at most 1.5% there) by more than its
-// noise (0.4%): the Halton order's shortfall the furnace shows (AtlasFurnaceTest.cpp:
-// FollowsTheDirectionSequence), larger here where the light is found by few directions per point. 8 seeds at 512: 0.9878 +- 0.0037 (the
+// noise (0.4%): presumably the Halton order's shortfall the furnace shows (AtlasFurnaceTest.cpp:
+// FollowsTheDirectionSequence); not verified (directions=random at 128: 0.0603 +- 0.0032 of
+// 0.0632, 8 seeds, too noisy to tell). 8 seeds at 512: 0.9878 +- 0.0037 (the
 // noise gate's margin is small: stderr 0.00024 against tol / 3 = 0.00025).
 // A wrong hemisphere density or texel area moves the mean by 2x, a missing bounce by ~20%; the
 // exchange's received light x 1.10: +21.5% (fails).
