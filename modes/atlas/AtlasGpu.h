@@ -68,7 +68,7 @@ struct AtlasMode::Gpu {
     // exchange + update (the bench's ms per direction include host submission and waits).
     PassTime wallBuild{"build + sort (wall)"}, wallExchange{"exchange + update (wall)"};
     std::uint64_t nodesLast = 0;
-    std::uint32_t rebuilds = 0;
+    std::uint64_t rebuilds = 0;
 };
 
 } // namespace bl

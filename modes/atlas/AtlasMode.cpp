@@ -6,6 +6,7 @@
 #include "base/Log.h"
 #include "base/WallSpan.h"
 #include "bundle/BundleFrame.h"
+#include "bundle/FittingBuild.h"
 #include "bundle/BundlePool.h"
 #include "bundle/DirectionSampler.h"
 #include "gpu/CameraPass.h"
@@ -40,7 +41,6 @@ using atlasmode::addressOf;
 using atlasmode::kStorage;
 
 namespace {
-constexpr double kMiB = 1024.0 * 1024.0;
 // First pool size in nodes per bundle pixel: closed rooms seen along a direction cross ~2-4
 // surfaces per pixel inside the frame's disc; the pool grows to what a direction needs.
 constexpr std::uint64_t kInitialNodesPerPixel = 4;
@@ -307,30 +307,17 @@ shader::AtlasDirection AtlasMode::buildBundle(const IterationInfo& info) {
     params.glossy = g.glossyTransfer ? 1u : 0u;
     params.next = g.directions->sample(directionIndex(mIterations + 1)).omega;
 
-    for (;;) {
-        {
-            const WallSpan wall(g.wallBuild);
-            mContext->submitAndWait([&](VkCommandBuffer cmd) {
-                g.timer.begin(cmd);
-                g.pool->recordReset(cmd);
-                g.pool->recordBuild(cmd, 0, frame, BundleGeometry::triangles(info.time), &g.timer);
-                g.pool->recordSort(cmd, 0, &g.timer);
-            });
-            g.timer.collect();
-        }
-        const BundlePoolStatus status = g.pool->status();
-        if (!status.overflowed()) {
-            g.nodesLast = status.requested;
-            return params;
-        }
-        if (!g.pool->grow(status)) {
-            throw Error("atlas: a " + std::to_string(frame.width) + "^2 bundle needs " + std::to_string(status.requested) +
-                        " nodes (" + std::to_string(double(status.requested) * double(g.pool->bytesPerNode()) / kMiB) +
-                        " MiB), the pool holds at most " + std::to_string(g.pool->maxNodes()) +
-                        " (memory_cap_mib or the device's limits); lower bundle_resolution");
-        }
-        ++g.rebuilds;
-    }
+    g.nodesLast = buildFitting(*g.pool, {"atlas", 1, frame.width}, [&] {
+        const WallSpan wall(g.wallBuild);
+        mContext->submitAndWait([&](VkCommandBuffer cmd) {
+            g.timer.begin(cmd);
+            g.pool->recordReset(cmd);
+            g.pool->recordBuild(cmd, 0, frame, BundleGeometry::triangles(info.time), &g.timer);
+            g.pool->recordSort(cmd, 0, &g.timer);
+        });
+        g.timer.collect();
+    }, g.rebuilds);
+    return params;
 }
 
 void AtlasMode::iterate(const IterationInfo& info) {

@@ -3,6 +3,7 @@
 #include "base/Error.h"
 #include "base/WallSpan.h"
 #include "bundle/BundleFrame.h"
+#include "bundle/FittingBuild.h"
 #include "gpu/CameraPass.h"
 #include "gpu/ShadowCubePass.h"
 #include "gpu/PackedTextures.h"
@@ -28,7 +29,6 @@
 namespace bl {
 
 namespace {
-constexpr double kMiB = 1024.0 * 1024.0;
 
 // How far a VPL's shadow cube centre sits off its surface, as a fraction of the scene's bounding
 // radius: the cube must not sit exactly in the VPL's own plane (that plane, seen edge-on, would
@@ -149,7 +149,7 @@ struct BidirMode::Gpu {
         wallEvaluate{"shadow cubes + evaluate (wall)"};
     Bounds bounds;
     std::uint64_t nodesLast = 0;
-    std::uint32_t rebuilds = 0;
+    std::uint64_t rebuilds = 0;
     std::uint64_t invalidVpls = 0; // over all frames: VPLs that add nothing (escaped, black, back-lit or lost)
     std::uint64_t lostVpls = 0;    // over all frames: VPLs whose record was not finite (never used)
     std::uint64_t sampledVpls = 0; // over all frames: what invalidVpls and lostVpls are parts of
@@ -394,7 +394,7 @@ void BidirMode::buildBundles(const IterationInfo& info) {
     const std::vector<shader::BundleFrame> environment = g.environment->frames(
         mIterations, static_cast<std::uint32_t>(info.seed), pairSlots, g.visiblePoints, g.bounds, resolution);
     frames.insert(frames.end(), environment.begin(), environment.end());
-    for (;;) {
+    g.nodesLast = buildFitting(*g.pool, {"bidir", slots, resolution}, [&] {
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
             g.pool->recordReset(cmd);
@@ -403,20 +403,7 @@ void BidirMode::buildBundles(const IterationInfo& info) {
             }
         });
         g.timer.collect();
-        const BundlePoolStatus status = g.pool->status();
-        if (!status.overflowed()) {
-            g.nodesLast = status.requested;
-            return;
-        }
-        if (!g.pool->grow(status)) {
-            const double perNode = double(g.pool->bytesPerNode());
-            throw Error("bidir: " + std::to_string(slots) + " bundles of " + std::to_string(resolution) + "^2 need " +
-                        std::to_string(status.requested) + " nodes (" + std::to_string(status.requested * perNode / kMiB) +
-                        " MiB), the pool holds at most " + std::to_string(g.pool->maxNodes()) +
-                        " (the device's limits or memory_cap_mib)");
-        }
-        ++g.rebuilds;
-    }
+    }, g.rebuilds);
 }
 
 void BidirMode::iterate(const IterationInfo& info) {

@@ -4,6 +4,7 @@
 #include "bundle/BundleFrame.h"
 #include "bundle/BundlePool.h"
 #include "bundle/DirectionSampler.h"
+#include "bundle/FittingBuild.h"
 #include "gpu/CameraPass.h"
 #include "gpu/PackedTextures.h"
 #include "gpu/ShadowCubePass.h"
@@ -88,7 +89,7 @@ struct MultibounceMode::Gpu {
     vk::GpuTimer timer;
     Bounds bounds;
     std::uint64_t nodesLast = 0; // nodes the last iteration's K bundles held
-    std::uint32_t rebuilds = 0;  // iterations redone after the pool grew
+    std::uint64_t rebuilds = 0;  // iterations redone after the pool grew
 };
 
 MultibounceMode::~MultibounceMode() = default;
@@ -236,7 +237,7 @@ void MultibounceMode::buildBundles(const IterationInfo& info) {
         const BundleDirection dir = g.directions->sample(mIterations * slots + k);
         frames[k] = bundleFrameForSphere(dir.omega, dir.rotation, g.bounds.center(), g.bounds.radius(), resolution);
     }
-    for (;;) {
+    g.nodesLast = buildFitting(*g.pool, {"multibounce", slots, resolution}, [&] {
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
             g.pool->recordReset(cmd);
@@ -253,23 +254,7 @@ void MultibounceMode::buildBundles(const IterationInfo& info) {
             }
         });
         g.timer.collect();
-        const BundlePoolStatus status = g.pool->status();
-        if (!status.overflowed()) {
-            g.nodesLast = status.requested;
-            return;
-        }
-        if (!g.pool->grow(status)) {
-            const double perNode = double(g.pool->bytesPerNode());
-            const double fits = double(slots) * double(g.pool->maxNodes()) / double(status.requested);
-            throw Error("multibounce: " + std::to_string(slots) + " bundles of " + std::to_string(resolution) +
-                        "^2 need " + std::to_string(status.requested) + " nodes (" +
-                        std::to_string(status.requested * perNode / kMiB) + " MiB), the pool holds at most " +
-                        std::to_string(g.pool->maxNodes()) + " (" + std::to_string(g.pool->maxNodes() * perNode / kMiB) +
-                        " MiB: memory_cap_mib or the device's limits); about " + std::to_string(std::uint64_t(fits)) +
-                        " bundles fit at this resolution");
-        }
-        ++g.rebuilds;
-    }
+    }, g.rebuilds);
 }
 
 void MultibounceMode::iterate(const IterationInfo& info) {
