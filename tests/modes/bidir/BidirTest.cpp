@@ -4,11 +4,18 @@
 
 using namespace bl::test::bidirmode;
 
-TEST_F(Bidir, VplStrategyConvergesToReferenceIndirect1) {
+namespace {
+// The tests that share the point-lit box's runs (vplRuns, bundleRuns, misRuns: each 12 seeds of
+// 128-256 frames). ctest runs them as one process (tests/CMakeLists.txt: BidirEstimators), so
+// each configuration renders once; as separate processes misRuns rendered four times.
+class BidirEstimators : public Bidir {};
+} // namespace
+
+TEST_F(BidirEstimators, VplStrategyConvergesToReferenceIndirect1) {
     expectConverged(vplRuns().final1, reference1, kNoisyTolerance, "vpl", kDimRegion);
 }
 
-TEST_F(Bidir, BundleStrategyConvergesToReferenceIndirect1) {
+TEST_F(BidirEstimators, BundleStrategyConvergesToReferenceIndirect1) {
     expectConverged(bundleRuns().final1, reference1, kNoisyTolerance, "bundle", kDimRegion);
 }
 
@@ -18,12 +25,12 @@ TEST_F(Bidir, BundleStrategyConvergesToReferenceIndirect1) {
 // strategy alone carries a 1/r^2 tail few seeds cannot bound (8 seeds x 512 frames: every region
 // within -5.5%..+2.5% of the reference, one region's seeds' spread 5.8%); RsmVplsConvergeRegionByRegion
 // tests the RSM's VPLs region by region under MIS, see papers/tokuyoshi-ogaki-2012.md.
-TEST_F(Bidir, RsmVplStrategyImageMeanConvergesToReferenceIndirect1) {
+TEST_F(BidirEstimators, RsmVplStrategyImageMeanConvergesToReferenceIndirect1) {
     const Runs& r = runs({"strategy=vpl", "bounces=1", "vpl_source=rsm"}, kComparisonFrames);
     expectImageMeanConverged(r.final1, reference1, "rsm vpl, 128 frames", kImageTolerance);
 }
 
-TEST_F(Bidir, MisConvergesToReferenceIndirect1) {
+TEST_F(BidirEstimators, MisConvergesToReferenceIndirect1) {
     expectConverged(misRuns().final1, reference1, kTolerance, "mis");
 }
 
@@ -31,7 +38,7 @@ TEST_F(Bidir, MisConvergesToReferenceIndirect1) {
 // alone (Fig. 4's point: VPLs spike near corners, bundles miss small bright regions; MIS neither).
 // (The MIS runs' VPL cubes are finer, kMisVplCubes: at 128^2 too MIS had 1.1e-5 against 3.0e-5
 // and 3.5e-5.)
-TEST_F(Bidir, MisHasLowerErrorThanEitherStrategy) {
+TEST_F(BidirEstimators, MisHasLowerErrorThanEitherStrategy) {
     const double mis = stats::summarize(squaredErrors(misRuns().early1, reference1)).mean;
     const double vpl = stats::summarize(squaredErrors(vplRuns().early1, reference1)).mean;
     const double bundle = stats::summarize(squaredErrors(bundleRuns().early1, reference1)).mean;
@@ -43,7 +50,7 @@ TEST_F(Bidir, MisHasLowerErrorThanEitherStrategy) {
 
 // The unclamped two-bounce term (one VPL, one bundle hit, the VPL's shadow cube between them)
 // converges to the reference's indirect2 layer, region by region with kTwoBounceTolerance.
-TEST_F(Bidir, TwoBounceUnclampedConvergesToReferenceIndirect2) {
+TEST_F(BidirEstimators, TwoBounceUnclampedConvergesToReferenceIndirect2) {
     expectConverged(misRuns().final2, reference2, kTwoBounceTolerance, "two-bounce", kDimRegion);
 }
 
@@ -51,7 +58,7 @@ TEST_F(Bidir, TwoBounceUnclampedConvergesToReferenceIndirect2) {
 // to the unclamped runs with the same seeds and frames (paired: the same VPLs and bundles, so the
 // difference is the clamp's alone, not noise), stated as a share of the reference's indirect2.
 // One-bounce light is untouched by it.
-TEST_F(Bidir, TwoBounceClampingLosesAStatedShare) {
+TEST_F(BidirEstimators, TwoBounceClampingLosesAStatedShare) {
     const Runs& clamped = runs({"strategy=mis", "bounces=2", kMisVplCubes, kClamp}, kClampFrames);
     const Runs& unclamped = misRuns();
     const double ref = imageMean(reference2);
