@@ -14,6 +14,15 @@ constexpr VkFormat kDistanceFormat = VK_FORMAT_R32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 } // namespace
 
+bool ShadowCubePass::refreshFor(const vk::Context& ctx, GpuScene& scene, double time) {
+    if (mLightCount == 0 || (mLightsTime && (!scene.features().animated || *mLightsTime == time))) {
+        return false;
+    }
+    scene.setLightTime(ctx, time); // keyframed lights move with their shadows
+    mLightsTime = time;
+    return true;
+}
+
 ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution)
     : ShadowCubePass(ctx, scene, resolution, static_cast<std::uint32_t>(scene.lights().size())) {}
 

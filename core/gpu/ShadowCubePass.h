@@ -10,6 +10,8 @@
 #include "vk/GpuTimer.h"
 #include "vk/Pipeline.h"
 
+#include <optional>
+
 namespace bl::gpu {
 
 class ShadowCubePass {
@@ -24,6 +26,13 @@ public:
     // Renders cube `cube` from `position` (world space) with the scene at `time`; the other cubes
     // keep their contents.
     void record(VkCommandBuffer cmd, const glm::vec3& position, std::uint32_t cube, double time, vk::GpuTimer* timer);
+
+    // The refresh rule every mode shares: a static scene's light cubes are rendered once, a scene
+    // that moves (keyframed meshes or lights) needs them again whenever the scene time changes.
+    // True when the caller's next submission must record(cmd, time, ...): the keyframed lights
+    // have then been moved to `time` on the GPU (GpuScene::setLightTime) and the cubes count as
+    // rendered for `time`. False without lights.
+    bool refreshFor(const vk::Context& ctx, GpuScene& scene, double time);
 
     const vk::GpuImage& maps() const { return mMaps; }
     std::uint32_t resolution() const { return mResolution; }
@@ -40,6 +49,7 @@ private:
     std::uint32_t mResolution;
     std::uint32_t mLightCount;
     std::uint32_t mCubes;
+    std::optional<double> mLightsTime; // scene time the light cubes were last recorded for
     vk::GpuImage mMaps;
     vk::GpuImage mDepth;
     vk::PipelineLayout mPipelineLayout;

@@ -243,7 +243,6 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     mScene = &scene;
     mContext = ctx;
     mIterations = 0;
-    mShadowTime.reset();
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
     const auto pairs = static_cast<std::uint32_t>(mSettings.getInt(kPairs));
@@ -459,12 +458,7 @@ void BidirMode::iterate(const IterationInfo& info) {
     std::memcpy(g.vplBuffer.data(), vpls.data(), sizeof(shader::BidirVpl) * pairs);
 
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
-    // Static scenes need the lights' shadow cubes once; animated ones whenever the time changes.
-    const bool renderShadows =
-        lightCount > 0 && (!mShadowTime || (g.scene->features().animated && *mShadowTime != info.time));
-    if (renderShadows) {
-        g.scene->setLightTime(*mContext, info.time); // keyframed lights move with their shadows
-    }
+    const bool renderShadows = g.shadows->refreshFor(*mContext, *g.scene, info.time);
     shader::BidirPush push{};
     if (g.pool) {
         push.pool = g.pool->view();
@@ -514,9 +508,6 @@ void BidirMode::iterate(const IterationInfo& info) {
     });
     g.timer.collect();
     wall.reset();
-    if (renderShadows) {
-        mShadowTime = info.time;
-    }
     if (mInterleave->active()) mInterleave->advance();
     ++mIterations;
 }

@@ -148,7 +148,6 @@ private:
     vk::Context* mContext = nullptr;
     std::unique_ptr<Gpu> mGpu;
     std::uint32_t mIterations = 0;
-    std::optional<double> mShadowTime; // scene time of the lights' shadow cubes
     std::unique_ptr<Interleaving> mInterleave; // kept across setScene: the temporal caches
     const Scene* mInterleaveScene = nullptr;
 };

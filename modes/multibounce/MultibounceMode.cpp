@@ -148,7 +148,6 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     mScene = &scene;
     mContext = ctx;
     mIterations = 0;
-    mShadowTime.reset();
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
     const auto shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
@@ -271,12 +270,7 @@ void MultibounceMode::iterate(const IterationInfo& info) {
 
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
     const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time, info.seed);
-    // Static scenes need their shadow maps once; animated ones whenever the time changes.
-    const bool renderShadows = g.shadows->lightCount() > 0 &&
-                               (!mShadowTime || (g.scene->features().animated && *mShadowTime != info.time));
-    if (renderShadows) {
-        g.scene->setLightTime(*mContext, info.time); // keyframed lights move with their shadows
-    }
+    const bool renderShadows = g.shadows->refreshFor(*mContext, *g.scene, info.time);
     shader::MultibouncePush push{};
     push.pool = g.pool->view();
     push.width = width;
@@ -316,9 +310,6 @@ void MultibounceMode::iterate(const IterationInfo& info) {
                           VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
     });
     g.timer.collect();
-    if (renderShadows) {
-        mShadowTime = info.time;
-    }
     ++mIterations;
 }
 

@@ -78,7 +78,6 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     mScene = &scene;
     mContext = ctx;
     mIterations = 0;
-    mShadowTime.reset();
     VkDevice device = ctx->device();
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
@@ -123,11 +122,7 @@ void RasterMode::iterate(const IterationInfo& info) {
     const std::uint32_t width = g.camera->width();
     const std::uint32_t height = g.camera->height();
     const gpu::CameraSample sample = g.camera->sample(mIterations, mSettings.getBool(kJitter), info.time, info.seed);
-    // Static scenes need their shadow maps once; animated ones whenever the time changes.
-    const bool renderShadows = !mShadowTime || (g.scene->features().animated && *mShadowTime != info.time);
-    if (renderShadows) {
-        g.scene->setLightTime(*mContext, info.time); // keyframed lights move with their shadows
-    }
+    const bool renderShadows = g.shadows->refreshFor(*mContext, *g.scene, info.time);
 
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
@@ -156,9 +151,6 @@ void RasterMode::iterate(const IterationInfo& info) {
                           VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
     });
     g.timer.collect();
-    if (renderShadows) {
-        mShadowTime = info.time;
-    }
     ++mIterations;
 }
 

@@ -51,7 +51,6 @@ private:
     vk::Context* mContext = nullptr;
     std::unique_ptr<Gpu> mGpu;
     std::uint32_t mIterations = 0;
-    std::optional<double> mShadowTime; // scene time the shadow maps were rendered for
 };
 
 } // namespace bl

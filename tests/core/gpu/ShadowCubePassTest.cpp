@@ -70,3 +70,29 @@ TEST_F(ShadowCubePassTest, TooFewCubesForTheLightsIsAClearError) {
     gpu::GpuScene gpuScene(ctx(), scene);
     EXPECT_THROW(gpu::ShadowCubePass(ctx(), gpuScene, kResolution, 0), Error);
 }
+
+// The refresh rule the modes share: a static scene's light cubes once, a moving scene's whenever
+// the scene time changes, never without lights.
+TEST_F(ShadowCubePassTest, RefreshesOnceForStaticScenesAndOnEveryNewTimeForMovingOnes) {
+    Scene still = loadScene(test::sourcePath("data/analytic/point-over-plane.toml"));
+    gpu::GpuScene stillGpu(ctx(), still);
+    gpu::ShadowCubePass stillPass(ctx(), stillGpu, kResolution);
+    EXPECT_TRUE(stillPass.refreshFor(ctx(), stillGpu, 0.0));
+    EXPECT_FALSE(stillPass.refreshFor(ctx(), stillGpu, 0.0));
+    EXPECT_FALSE(stillPass.refreshFor(ctx(), stillGpu, 1.0)); // nothing moves: the cubes hold
+
+    Scene moving = loadScene(test::sourcePath("data/cornell-box/cornell-animated.toml"));
+    ASSERT_TRUE(moving.features().animated);
+    gpu::GpuScene movingGpu(ctx(), moving);
+    gpu::ShadowCubePass movingPass(ctx(), movingGpu, kResolution);
+    EXPECT_TRUE(movingPass.refreshFor(ctx(), movingGpu, 0.0));
+    EXPECT_FALSE(movingPass.refreshFor(ctx(), movingGpu, 0.0));
+    EXPECT_TRUE(movingPass.refreshFor(ctx(), movingGpu, 0.5));
+    EXPECT_FALSE(movingPass.refreshFor(ctx(), movingGpu, 0.5));
+    EXPECT_TRUE(movingPass.refreshFor(ctx(), movingGpu, 0.0));
+
+    Scene dark = loadScene(test::sourcePath("data/cornell-box/cornell.toml")); // an area light only
+    gpu::GpuScene darkGpu(ctx(), dark);
+    gpu::ShadowCubePass darkPass(ctx(), darkGpu, kResolution);
+    EXPECT_FALSE(darkPass.refreshFor(ctx(), darkGpu, 0.0));
+}
