@@ -120,10 +120,12 @@ constexpr double kFullEnough = 0.995;
 // The most texels an atlas may have over all its pages (65 bytes of maps each: 16 GiB).
 constexpr std::size_t kMaxAtlasTexels = std::size_t(1) << 28;
 
-// Scales and places the oriented charts: the densest packing into one options.size^2 page, or
+// Scales and places the oriented charts: the densest packing into the first `fill` of the rows of
+// one options.size^2 page (the rest left for the charts of sub-texel triangles, added after), or
 // options.texelsPerUnit in the smallest power-of-two page that holds it, up to options.pageSize,
 // then on as many such pages as needed. Returns the density; uv become page texel coordinates.
-float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, int& width, int& height, int& pages) {
+float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, double fill, int& width, int& height,
+                int& pages) {
     double area = 0.0;
     for (const FlatChart& c : charts) {
         for (std::size_t i = 0; i < c.faces.size(); ++i) {
@@ -162,18 +164,19 @@ float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, int
         // ratio: the area a packing takes grows with the density squared, so a few packings reach
         // the densest that fits. Start from the density that would cover 3/4 of the atlas.
         constexpr int kUnbounded = std::numeric_limits<int>::max() / 4;
-        double fits = 0.0, trial = std::sqrt(0.75 * double(width) * height / area);
+        const int rows = std::max(1, int(fill * height));
+        double fits = 0.0, trial = std::sqrt(0.75 * double(width) * rows / area);
         Packing attempt;
         for (int i = 0; i < kDensitySearchPackings || fits == 0.0; ++i) {
-            int used = 2 * height; // a chart wider than the atlas: shrink
+            int used = 2 * rows; // a chart wider than the atlas: shrink
             if (packCharts(charts, float(trial), width, kUnbounded, options.padding, 1, attempt)) used = attempt.usedHeight;
             log::debug("atlas: " + std::to_string(trial) + " texels per unit take " + std::to_string(used) + " rows");
-            if (used <= height && trial > fits) {
+            if (used <= rows && trial > fits) {
                 fits = trial;
                 packing = attempt;
-                if (used >= kFullEnough * height) break;
+                if (used >= kFullEnough * rows) break;
             }
-            const double next = trial * std::sqrt(double(height) / std::max(used, 1)) * (used <= height ? 1.0 : 0.99);
+            const double next = trial * std::sqrt(double(rows) / std::max(used, 1)) * (used <= rows ? 1.0 : 0.99);
             trial = next > fits ? next : 0.5 * (fits + trial);
             if (!(trial > 0.0) || i > 64) {
                 throw Error("atlas: " + std::to_string(charts.size()) + " charts do not fit in " + std::to_string(width) +
@@ -267,6 +270,40 @@ std::vector<std::pair<std::size_t, std::size_t>> coverTexels(const std::vector<F
 // bound on the mask the packer places; about twice it for slivers).
 
 // `needed` carries the texels of the singles of earlier coverage rounds: the budget is for all.
+// One packing and covering of the charts (packAndCover).
+struct Covered {
+    std::vector<FlatChart> charts;
+    std::vector<TexelOwner> owner;
+    std::map<std::pair<int, int>, int> owned;
+    float density = 0.0f;
+    double fill = 1.0;
+    int width = 0, height = 0, pages = 1;
+    int packedPages = 1;         // pages of the packing, before the single-triangle charts
+    double spilledTexels = 0.0;  // texels the single-triangle charts took on pages beyond those
+    std::size_t isolatedTriangles = 0, uncoveredTriangles = 0;
+    // This one where `keep`, else `other`.
+    Covered keepIf(bool keep, Covered&& other) && { return keep ? std::move(*this) : std::move(other); }
+};
+
+// A packing that left single-triangle charts no room is packed again into fewer rows: at most
+// this many times, where what spilled is under kRoomAtMost of a page, giving up kRoomMargin times
+// the spilled texels (fewer rows mean a lower density, so more triangles fall under a texel).
+constexpr int kRoomAttempts = 3;
+constexpr double kRoomAtMost = 0.25;
+constexpr double kRoomMargin = 2.0;
+
+// The texels a placed single-triangle chart takes with its padding.
+double singleFootprint(const FlatChart& placed, int padding) {
+    glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+    for (const glm::vec2& q : placed.uv) {
+        lo = glm::min(lo, q);
+        hi = glm::max(hi, q);
+    }
+    const glm::vec2 texels = glm::ceil(hi - lo) + 1.0f + 2.0f * float(padding); // uv: page texels
+
+    return double(texels.x) * double(texels.y);
+}
+
 void refuseOutweighingSingles(const std::vector<FlatChart>& singles, float density, const AtlasOptions& options,
                               std::size_t occupied, int width, int height, std::size_t triangles, double& needed) {
     for (const FlatChart& c : singles) {
@@ -289,6 +326,74 @@ void refuseOutweighingSingles(const std::vector<FlatChart>& singles, float densi
                     "), a page or a 512^2 page: remesh them into fewer, fatter triangles, or raise "
                     "atlas_resolution until they own texels");
     }
+}
+
+// Packs the oriented charts (packAtlas, `fill` of the rows with a fixed side), then covers the
+// texels: triangles left without a texel of their own (sub-texel slivers crowded by their
+// neighbours) move to charts of their own, added into the holes of the finished atlas without
+// moving anything else (on new pages where no hole holds them); alone, they own every texel they
+// touch.
+Covered packAndCover(const Scene& scene, const AtlasOptions& options, const std::vector<std::vector<std::uint32_t>>& welded,
+                     const std::vector<FlatChart>& oriented, double fill) {
+    std::size_t triangleCount = 0;
+    for (const Mesh& m : scene.meshes) triangleCount += m.triangles.size();
+    Covered out;
+    out.charts = oriented;
+    out.fill = fill;
+    std::vector<FlatChart>& charts = out.charts;
+    int& width = out.width;
+    int& height = out.height;
+    int& pages = out.pages;
+    const float density = out.density = packAtlas(charts, options, fill, width, height, pages);
+    out.packedPages = pages;
+    std::vector<ChartPacker> packers(std::size_t(pages), ChartPacker(width, height, options.padding));
+    for (const FlatChart& c : charts) packers[c.page].occupy(c);
+    std::size_t occupied = 0;
+    for (const ChartPacker& p : packers) occupied += p.occupiedTexels();
+    log::debug("atlas: charts take " + std::to_string(double(occupied) / (double(width) * height * pages)) +
+               " of the atlas with their padding");
+    double singleTexels = 0.0; // what the singles of every round need (refuseOutweighingSingles)
+    for (int round = 0;; ++round) {
+        std::vector<std::pair<std::size_t, std::size_t>> uncovered =
+            coverTexels(charts, width, height, pages, out.owner, out.owned);
+        if (uncovered.empty() || round == kCoverageRounds) {
+            out.uncoveredTriangles = uncovered.size();
+            break;
+        }
+        log::debug("atlas: " + std::to_string(uncovered.size()) + " triangles own no texel; giving them charts of their own");
+        out.isolatedTriangles += uncovered.size();
+        std::sort(uncovered.begin(), uncovered.end(), std::greater<>());
+        std::vector<FlatChart> singles;
+        for (auto [c, i] : uncovered) {
+            FlatChart& chart = charts[c];
+            singles.push_back(flatten(scene.meshes[chart.mesh], chart.mesh, {chart.faces[i]}, welded[chart.mesh]));
+            chart.faces.erase(chart.faces.begin() + std::ptrdiff_t(i));
+            chart.uv.erase(chart.uv.begin() + std::ptrdiff_t(3 * i), chart.uv.begin() + std::ptrdiff_t(3 * i + 3));
+        }
+        std::erase_if(charts, [](const FlatChart& c) { return c.faces.empty(); });
+        orientCharts(singles);
+        refuseOutweighingSingles(singles, density, options, occupied, width, height, triangleCount, singleTexels);
+        for (FlatChart& single : singles) {
+            glm::vec2 offset;
+            int turns = 0;
+            std::uint32_t page = 0;
+            while (page < packers.size() && !packers[page].place(single, density, offset, turns)) ++page;
+            if (page == packers.size()) {
+                // No room left on any page: a new page (its triangle left out would leave the
+                // atlas without it, and the atlas link refuse the scene).
+                packers.emplace_back(width, height, options.padding);
+                ++pages;
+                if (!packers[page].place(single, density, offset, turns)) {
+                    continue; // larger than a page: stays uncovered and is counted
+                }
+            }
+            placeChart(single, density, offset, turns);
+            single.page = page;
+            if (int(page) >= out.packedPages) out.spilledTexels += singleFootprint(single, options.padding);
+            charts.push_back(std::move(single));
+        }
+    }
+    return out;
 }
 
 } // namespace
@@ -316,59 +421,33 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
     }
     orientCharts(atlas.charts);
 
-    // 2-3. Pack, then cover texels. Triangles left without a texel of their own (sub-texel
-    // slivers crowded by their neighbours) move to charts of their own, added into the holes of the
-    // finished atlas without moving anything else; alone, they own every texel they touch.
-    std::vector<TexelOwner> owner;
-    std::map<std::pair<int, int>, int> owned;
-    int width = options.size, height = options.size, pages = 1;
-    const float density = packAtlas(atlas.charts, options, width, height, pages);
-    std::vector<ChartPacker> packers(std::size_t(pages), ChartPacker(width, height, options.padding));
-    for (const FlatChart& c : atlas.charts) packers[c.page].occupy(c);
-    std::size_t occupied = 0;
-    for (const ChartPacker& p : packers) occupied += p.occupiedTexels();
-    log::debug("atlas: charts take " + std::to_string(double(occupied) / (double(width) * height * pages)) +
-               " of the atlas with their padding");
-    double singleTexels = 0.0; // what the singles of every round need (refuseOutweighingSingles)
-    for (int round = 0;; ++round) {
-        std::vector<std::pair<std::size_t, std::size_t>> uncovered =
-            coverTexels(atlas.charts, width, height, pages, owner, owned);
-        if (uncovered.empty() || round == kCoverageRounds) {
-            st.uncoveredTriangles = uncovered.size();
-            break;
-        }
-        log::debug("atlas: " + std::to_string(uncovered.size()) + " triangles own no texel; giving them charts of their own");
-        st.isolatedTriangles += uncovered.size();
-        std::sort(uncovered.begin(), uncovered.end(), std::greater<>());
-        std::vector<FlatChart> singles;
-        for (auto [c, i] : uncovered) {
-            FlatChart& chart = atlas.charts[c];
-            singles.push_back(flatten(scene.meshes[chart.mesh], chart.mesh, {chart.faces[i]}, welded[chart.mesh]));
-            chart.faces.erase(chart.faces.begin() + std::ptrdiff_t(i));
-            chart.uv.erase(chart.uv.begin() + std::ptrdiff_t(3 * i), chart.uv.begin() + std::ptrdiff_t(3 * i + 3));
-        }
-        std::erase_if(atlas.charts, [](const FlatChart& c) { return c.faces.empty(); });
-        orientCharts(singles);
-        refuseOutweighingSingles(singles, density, options, occupied, width, height, st.triangles, singleTexels);
-        for (FlatChart& single : singles) {
-            glm::vec2 offset;
-            int turns = 0;
-            std::uint32_t page = 0;
-            while (page < packers.size() && !packers[page].place(single, density, offset, turns)) ++page;
-            if (page == packers.size()) {
-                // No room left on any page: a new page (its triangle left out would leave the
-                // atlas without it, and the atlas link refuse the scene).
-                packers.emplace_back(width, height, options.padding);
-                ++pages;
-                if (!packers[page].place(single, density, offset, turns)) {
-                    continue; // larger than a page: stays uncovered and is counted
-                }
-            }
-            placeChart(single, density, offset, turns);
-            single.page = page;
-            atlas.charts.push_back(std::move(single));
-        }
+    // 2-3. Pack, then cover texels (packAndCover). With a fixed side (options.size) the densest
+    // packing fills the page, so the charts of sub-texel triangles, which only the covering finds,
+    // spilled onto a page of their own (Sponza at 2048^2: a second, nearly empty page, utilization
+    // 0.447). Where they would fit in part of a page, the charts are packed again into the rows
+    // that leave them room (up to kRoomAttempts times), and the packing with fewer pages is kept.
+    const std::vector<FlatChart> oriented = atlas.charts;
+    Covered packed = packAndCover(scene, options, welded, oriented, 1.0);
+    const double page = double(packed.width) * double(packed.height);
+    for (int attempt = 0; options.texelsPerUnit <= 0.0f && packed.pages > packed.packedPages &&
+                          attempt < kRoomAttempts && packed.spilledTexels < kRoomAtMost * page;
+         ++attempt) {
+        const double fill = packed.fill - kRoomMargin * packed.spilledTexels / page;
+        log::debug("atlas: " + std::to_string(packed.spilledTexels) + " texels of single-triangle charts spilled onto " +
+                   std::to_string(packed.pages - packed.packedPages) + " more page(s); packing into " +
+                   std::to_string(fill) + " of the rows");
+        Covered again = packAndCover(scene, options, welded, oriented, fill);
+        const bool better = again.pages < packed.pages;
+        packed = std::move(again).keepIf(better, std::move(packed));
+        if (!better) break;
     }
+    atlas.charts = std::move(packed.charts);
+    st.isolatedTriangles += packed.isolatedTriangles;
+    st.uncoveredTriangles = packed.uncoveredTriangles;
+    const float density = packed.density;
+    const int width = packed.width, height = packed.height, pages = packed.pages;
+    std::vector<TexelOwner>& owner = packed.owner;
+    std::map<std::pair<int, int>, int>& owned = packed.owned;
     atlas.texelsPerUnit = density;
     TexelMaps& maps = atlas.maps;
     maps.width = width;
