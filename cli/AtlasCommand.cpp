@@ -21,7 +21,7 @@ void addAtlasCommand(CLI::App& app, Action& action) {
     };
     auto o = std::make_shared<Options>();
     CLI::App* cmd = app.add_subcommand("atlas", "build the texture atlas of a scene (charts, uvs, texel maps)");
-    cmd->add_option("scene", o->scene, "scene file (.toml, or a bare .obj/.ply)")->required();
+    cmd->add_option("scene", o->scene, "scene file (.toml, Mitsuba 3 .xml, or a bare .obj/.ply)")->required();
     auto* tpu = cmd->add_option("--texels-per-unit", o->atlas.texelsPerUnit, "fixed texel density (the atlas grows)")
                     ->check(finiteRange(1e-9, 1e9));
     auto* size = cmd->add_option("--size", o->atlas.size, "atlas side in texels (density chosen to fill it)")

@@ -19,7 +19,7 @@ namespace bl::cli {
 void addInfoCommand(CLI::App& app, Action& action) {
     auto path = std::make_shared<std::string>();
     CLI::App* cmd = app.add_subcommand("info", "print what a scene contains (Scene::features)");
-    cmd->add_option("scene", *path, "scene file (.toml, or a bare .obj/.ply)")->required();
+    cmd->add_option("scene", *path, "scene file (.toml, Mitsuba 3 .xml, or a bare .obj/.ply)")->required();
     cmd->callback([path, &action] {
         action = [path] {
             Scene scene = loadScene(*path);
@@ -30,6 +30,7 @@ void addInfoCommand(CLI::App& app, Action& action) {
                       << ")\n"
                       << "dropped          " << scene.loadStats.degenerateTriangles << " degenerate, "
                       << scene.loadStats.duplicateTriangles << " duplicate triangles\n";
+            for (const std::string& n : scene.importNotes) std::cout << "mapped           " << n << "\n";
             return 0;
         };
     });

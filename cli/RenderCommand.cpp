@@ -164,7 +164,7 @@ int runRender(const RenderOptions& o) {
 void addRenderCommand(CLI::App& app, Action& action) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "render a scene with one mode");
-    cmd->add_option("scene", o->scene, "scene file (.toml, or a bare .obj/.ply)")->required();
+    cmd->add_option("scene", o->scene, "scene file (.toml, Mitsuba 3 .xml, or a bare .obj/.ply)")->required();
     cmd->add_option("-m,--mode", o->mode, "rendering mode (see `bundlelab modes`)")->required();
     cmd->add_option("-o,--out", o->out, "output EXR; a PNG preview and a JSON record are written beside it")
         ->required();

@@ -35,6 +35,9 @@ struct Scene {
     std::vector<Light> lights;
     Environment environment;
     LoadStats loadStats;
+    // How a scene in another format was mapped to this model (MitsubaLoader.h), one line per
+    // decision: what was ignored, approximated or tessellated. Empty for the native formats.
+    std::vector<std::string> importNotes;
 
     std::size_t triangleCount() const;
     // Bounds of all geometry over its whole motion (rotations' arcs between keys included).

@@ -6,6 +6,8 @@
 #include "image/ImageIO.h"
 #include "scene/MeshCleanup.h"
 #include "scene/MeshFile.h"
+#include "scene/MeshTransform.h"
+#include "scene/MitsubaLoader.h"
 #include "scene/MtlLoader.h"
 #include "scene/ScenePrecision.h"
 #include "scene/ShaderConversions.h"
@@ -232,16 +234,6 @@ glm::mat4 readStaticTransform(StrictTable& t) {
     glm::mat4 m = glm::translate(glm::mat4(1.0f), translate) * glm::mat4_cast(rotationFromEulerDegrees(rotate)) *
                   glm::scale(glm::mat4(1.0f), scale);
     return m;
-}
-
-void bakeTransform(Mesh& mesh, const glm::mat4& m) {
-    glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
-    for (glm::vec3& p : mesh.positions) {
-        p = glm::vec3(m * glm::vec4(p, 1.0f));
-    }
-    for (glm::vec3& n : mesh.normals) {
-        n = normalMatrix * n;
-    }
 }
 
 // MTL material name -> index of the scene material that replaces it (a [[mesh]]'s `materials`).
@@ -547,7 +539,7 @@ Scene loadScene(const std::string& path) {
     }
     std::string ext = fs::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    Scene scene = ext == ".toml" ? loadTomlScene(path) : loadBareMesh(path);
+    Scene scene = ext == ".toml" ? loadTomlScene(path) : ext == ".xml" ? loadMitsubaScene(path) : loadBareMesh(path);
     requireRepresentable(scene);
     if (recentreFarScene(scene)) {
         log::info(path + ": far from the origin; renderers work relative to its centre " + formatNumber(scene.origin.x) +

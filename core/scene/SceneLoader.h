@@ -1,4 +1,4 @@
-// Loads a scene: a TOML scene file (format in README.md), or a bare .obj/.ply, which becomes a scene
+// Loads a scene: a TOML scene file (format in README.md), a Mitsuba 3 XML scene (MitsubaLoader.h), or a bare .obj/.ply, which becomes a scene
 // with a fitted camera (its MTL emitters are area lights; with none, a headlight and a white sky).
 // Strict: unknown keys, wrong types, missing files, NaN/Inf, non-positive sizes and out-of-range
 // reflectances are errors naming the file, line and key. Degenerate and duplicate triangles are

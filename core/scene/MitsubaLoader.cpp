@@ -1,0 +1,591 @@
+#include "scene/MitsubaLoader.h"
+
+#include "base/Error.h"
+#include "scene/MeshCleanup.h"
+#include "scene/MeshFile.h"
+#include "scene/MeshTransform.h"
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <pugixml.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+namespace bl {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Includes nested deeper than this are a cycle.
+constexpr int kMaxIncludeDepth = 16;
+// Mitsuba's defaults: an hdrfilm of 768 x 576, a diffuse bsdf of reflectance 0.5.
+constexpr int kFilmWidth = 768, kFilmHeight = 576;
+constexpr float kDefaultReflectance = 0.5f;
+
+// A parsed file, kept alive while its nodes are in use; its text gives line numbers.
+struct Document {
+    std::string path;
+    std::string text;
+    pugi::xml_document xml;
+};
+
+// An element and the document it came from.
+struct Element {
+    pugi::xml_node node;
+    const Document* doc = nullptr;
+};
+
+class Importer {
+public:
+    explicit Importer(const std::string& path) : mRoot(fs::path(path).parent_path()) { mScene.path = path; }
+
+    Scene run(const std::string& path) {
+        collect(path, 0, nullptr);
+        for (const Element& e : mTop) topLevel(e);
+        if (mScene.meshes.empty()) {
+            throw Error(path + ": the scene has no shapes");
+        }
+        if (!mCameraSet) {
+            throw Error(path + ": no <sensor type=\"perspective\">: bundlelab needs the camera from the file");
+        }
+        mScene.importNotes = mNotes;
+        return std::move(mScene);
+    }
+
+private:
+    // --- Reading the files --------------------------------------------------------------------
+
+    void collect(const std::string& path, int depth, const Element* from) {
+        if (depth > kMaxIncludeDepth) {
+            fail(*from, "includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " (a cycle?)");
+        }
+        Document& doc = mDocs.emplace_back();
+        doc.path = path;
+        std::ifstream in(path, std::ios::binary);
+        if (!in) {
+            if (from) fail(*from, "cannot open '" + path + "'");
+            throw Error(path + ": file not found");
+        }
+        std::stringstream buffer;
+        buffer << in.rdbuf();
+        doc.text = buffer.str();
+        const pugi::xml_parse_result parsed = doc.xml.load_buffer(doc.text.data(), doc.text.size());
+        if (!parsed) {
+            throw Error(path + ":" + std::to_string(lineOf(doc, std::size_t(parsed.offset))) + ": XML: " +
+                        parsed.description());
+        }
+        const pugi::xml_node root = doc.xml.child("scene");
+        if (!root) {
+            throw Error(path + ": no <scene> element");
+        }
+        for (const pugi::xml_node& node : root.children()) {
+            if (node.type() != pugi::node_element) continue;
+            const Element e{node, &doc};
+            const std::string tag = node.name();
+            if (tag == "include") {
+                collect(resolve(e, attribute(e, "filename")), depth + 1, &e);
+            } else if (tag == "default") {
+                // The first definition wins (Mitsuba: a -D on the command line, then the file's).
+                mDefaults.emplace(attribute(e, "name"), node.attribute("value").value());
+            } else {
+                mTop.push_back(e);
+                if (node.attribute("id")) {
+                    const std::string id = node.attribute("id").value();
+                    if (!mIds.emplace(id, e).second) fail(e, "duplicate id '" + id + "'");
+                }
+            }
+        }
+    }
+
+    static std::size_t lineOf(const Document& doc, std::size_t offset) {
+        offset = std::min(offset, doc.text.size());
+        return 1 + std::size_t(std::count(doc.text.begin(), doc.text.begin() + std::ptrdiff_t(offset), '\n'));
+    }
+
+    [[noreturn]] static void fail(const Element& e, const std::string& message) {
+        throw Error(e.doc->path + ":" + std::to_string(lineOf(*e.doc, std::size_t(e.node.offset_debug()))) + ": <" +
+                    e.node.name() + (e.node.attribute("type") ? std::string(" type=\"") + e.node.attribute("type").value() + "\"" : "") +
+                    ">: " + message);
+    }
+
+    // An attribute with $name parameters replaced; required.
+    std::string attribute(const Element& e, const char* name) const {
+        const pugi::xml_attribute a = e.node.attribute(name);
+        if (!a) fail(e, std::string("missing attribute '") + name + "'");
+        return substitute(e, a.value());
+    }
+
+    std::string substitute(const Element& e, std::string value) const {
+        for (std::size_t at = value.find('$'); at != std::string::npos; at = value.find('$', at)) {
+            std::size_t end = at + 1;
+            while (end < value.size() && (std::isalnum(static_cast<unsigned char>(value[end])) || value[end] == '_')) ++end;
+            const std::string name = value.substr(at + 1, end - at - 1);
+            const auto it = mDefaults.find(name);
+            if (it == mDefaults.end()) fail(e, "parameter '$" + name + "' has no <default>");
+            value.replace(at, end - at, it->second);
+            at += it->second.size();
+        }
+        return value;
+    }
+
+    // A file named in the scene: relative to the main file's folder (Mitsuba's file resolver),
+    // else to the including file's.
+    std::string resolve(const Element& e, const std::string& name) const {
+        const fs::path p(name);
+        if (p.is_absolute()) return name;
+        if (fs::exists(mRoot / p)) return (mRoot / p).string();
+        const fs::path local = fs::path(e.doc->path).parent_path() / p;
+        if (fs::exists(local)) return local.string();
+        fail(e, "file '" + name + "' not found (looked in " + mRoot.string() + " and " +
+                    fs::path(e.doc->path).parent_path().string() + ")");
+    }
+
+    // --- Values ------------------------------------------------------------------------------
+
+    std::vector<double> numbers(const Element& e, const std::string& text) const {
+        std::string s = text;
+        std::replace(s.begin(), s.end(), ',', ' ');
+        std::istringstream in(s);
+        std::vector<double> out;
+        std::string word;
+        while (in >> word) {
+            char* end = nullptr;
+            const double v = std::strtod(word.c_str(), &end);
+            if (end != word.c_str() + word.size() || !std::isfinite(v)) fail(e, "'" + text + "' is not a list of finite numbers");
+            out.push_back(v);
+        }
+        return out;
+    }
+
+    double number(const Element& e, const char* name) const {
+        const std::vector<double> v = numbers(e, attribute(e, name));
+        if (v.size() != 1) fail(e, std::string("attribute '") + name + "' must be one number");
+        return v[0];
+    }
+
+    glm::dvec3 triple(const Element& e, const char* name) const {
+        const std::vector<double> v = numbers(e, attribute(e, name));
+        if (v.size() != 3) fail(e, std::string("attribute '") + name + "' must be three numbers");
+        return {v[0], v[1], v[2]};
+    }
+
+    // x, y, z attributes (each defaulting to `fallback`) or one `value` of three numbers.
+    glm::dvec3 components(const Element& e, double fallback) const {
+        if (e.node.attribute("value")) {
+            const std::vector<double> v = numbers(e, attribute(e, "value"));
+            if (v.size() == 1) return glm::dvec3(v[0]);
+            if (v.size() != 3) fail(e, "'value' must be one or three numbers");
+            return {v[0], v[1], v[2]};
+        }
+        glm::dvec3 out(fallback);
+        const char* axes[] = {"x", "y", "z"};
+        for (int i = 0; i < 3; ++i) {
+            if (e.node.attribute(axes[i])) out[i] = number(e, axes[i]);
+        }
+        return out;
+    }
+
+    // The named property children of an element (<float name="fov" .../> ...), checked against
+    // what this element supports.
+    std::map<std::string, Element> properties(const Element& e, const std::set<std::string>& supported,
+                                              const std::set<std::string>& ignored = {}) {
+        std::map<std::string, Element> out;
+        for (const pugi::xml_node& c : e.node.children()) {
+            if (c.type() != pugi::node_element || !c.attribute("name")) continue;
+            const Element child{c, e.doc};
+            const std::string name = c.attribute("name").value();
+            if (ignored.count(name)) {
+                note(std::string("<") + e.node.name() + "> '" + name + "' ignored");
+                continue;
+            }
+            if (!supported.count(name)) {
+                std::string list;
+                for (const std::string& s : supported) list += (list.empty() ? "" : ", ") + s;
+                fail(child, "property '" + name + "' is not supported here (supported: " + list + ")");
+            }
+            out.emplace(name, child);
+        }
+        return out;
+    }
+
+    glm::vec3 color(const Element& e) const {
+        const std::string tag = e.node.name();
+        if (tag != "rgb" && tag != "float") {
+            fail(e, "only <rgb> or <float> values are supported (no spectra or textures yet)");
+        }
+        const std::vector<double> v = numbers(e, attribute(e, "value"));
+        if (v.size() == 1) return glm::vec3(float(v[0]));
+        if (v.size() != 3 || tag != "rgb") fail(e, "an <rgb> value has three numbers, a <float> one");
+        return {float(v[0]), float(v[1]), float(v[2])};
+    }
+
+    glm::dmat4 transform(const Element& e) const {
+        glm::dmat4 m(1.0);
+        for (const pugi::xml_node& c : e.node.children()) {
+            if (c.type() != pugi::node_element) continue;
+            const Element op{c, e.doc};
+            const std::string tag = c.name();
+            glm::dmat4 t(1.0);
+            if (tag == "translate") {
+                t = glm::translate(glm::dmat4(1.0), components(op, 0.0));
+            } else if (tag == "scale") {
+                t = glm::scale(glm::dmat4(1.0), components(op, 1.0));
+            } else if (tag == "rotate") {
+                const glm::dvec3 axis = components(op, 0.0);
+                if (!(glm::length(axis) > 0.0)) fail(op, "rotation axis is zero");
+                t = glm::rotate(glm::dmat4(1.0), number(op, "angle") * kPi / 180.0, glm::normalize(axis));
+            } else if (tag == "matrix") {
+                const std::vector<double> v = numbers(op, attribute(op, "value"));
+                if (v.size() != 16 && v.size() != 9) fail(op, "a matrix has 16 (or 9) numbers, row by row");
+                const int n = v.size() == 16 ? 4 : 3;
+                for (int r = 0; r < n; ++r) {
+                    for (int col = 0; col < n; ++col) t[col][r] = v[std::size_t(r * n + col)];
+                }
+            } else if (tag == "lookat") {
+                const glm::dvec3 origin = triple(op, "origin"), target = triple(op, "target");
+                const glm::dvec3 up = op.node.attribute("up") ? triple(op, "up") : glm::dvec3(0, 1, 0);
+                const glm::dvec3 dir = glm::normalize(target - origin);
+                glm::dvec3 left = glm::cross(up, dir);
+                if (!(glm::length(left) > 0.0)) fail(op, "'up' is parallel to the view direction");
+                left = glm::normalize(left);
+                const glm::dvec3 newUp = glm::cross(dir, left);
+                t = glm::dmat4(glm::dvec4(left, 0.0), glm::dvec4(newUp, 0.0), glm::dvec4(dir, 0.0), glm::dvec4(origin, 1.0));
+            } else {
+                fail(op, "transform operation not supported (supported: translate, rotate, scale, matrix, lookat)");
+            }
+            m = t * m;
+        }
+        return m;
+    }
+
+    void note(const std::string& text) {
+        if (std::find(mNotes.begin(), mNotes.end(), text) == mNotes.end()) mNotes.push_back(text);
+    }
+
+    // --- Scene objects -------------------------------------------------------------------------
+
+    void topLevel(const Element& e) {
+        const std::string tag = e.node.name();
+        if (tag == "shape") {
+            shape(e);
+        } else if (tag == "sensor") {
+            sensor(e);
+        } else if (tag == "emitter") {
+            if (!e.node.attribute("id")) emitter(e);
+        } else if (tag == "bsdf" || tag == "texture") {
+            // Used where a shape refers to it.
+        } else if (tag == "integrator" || tag == "sampler" || tag == "rfilter" || tag == "film") {
+            note("<" + tag + " type=\"" + e.node.attribute("type").value() +
+                 "\"> ignored: how to render is the mode's choice, not the scene's");
+        } else {
+            fail(e, "element not supported (supported at the top: shape, bsdf, emitter, sensor, include, default; "
+                    "integrator, sampler ignored)");
+        }
+    }
+
+    // The element a <ref id="..."/> names, which must be a `tag`.
+    Element referenced(const Element& ref, const std::string& tag) const {
+        const std::string id = attribute(ref, "id");
+        const auto it = mIds.find(id);
+        if (it == mIds.end()) fail(ref, "no element with id '" + id + "'");
+        if (tag != it->second.node.name()) fail(ref, "id '" + id + "' is a <" + it->second.node.name() + ">, not a <" + tag + ">");
+        return it->second;
+    }
+
+    std::uint32_t material(const Element& bsdf) {
+        const std::string key = bsdf.doc->path + "#" + std::to_string(bsdf.node.offset_debug());
+        if (const auto it = mMaterialOf.find(key); it != mMaterialOf.end()) return it->second;
+        Material m;
+        m.name = bsdf.node.attribute("id") ? bsdf.node.attribute("id").value() : "bsdf" + std::to_string(mScene.materials.size());
+        Element inner = bsdf;
+        if (std::string(bsdf.node.attribute("type").value()) == "twosided") {
+            std::vector<Element> nested;
+            for (const pugi::xml_node& c : bsdf.node.children("bsdf")) nested.push_back({c, bsdf.doc});
+            for (const pugi::xml_node& c : bsdf.node.children("ref")) nested.push_back(referenced({c, bsdf.doc}, "bsdf"));
+            if (nested.size() != 1) fail(bsdf, "a twosided bsdf holds exactly one bsdf (two different sides are not supported)");
+            inner = nested.front();
+        } else if (std::string(bsdf.node.attribute("type").value()) == "diffuse") {
+            note("bsdf 'diffuse' (one-sided in Mitsuba) read as bundlelab's Lambertian, which reflects on both sides");
+        }
+        const std::string type = inner.node.attribute("type").value();
+        if (type != "diffuse") {
+            fail(inner, "bsdf type not supported (supported: diffuse, twosided around a diffuse); glossy bsdfs are "
+                        "not mapped to bundlelab's Phong / Ashikhmin-Shirley yet");
+        }
+        const auto props = properties(inner, {"reflectance"});
+        m.albedo = props.count("reflectance") ? color(props.at("reflectance")) : glm::vec3(kDefaultReflectance);
+        for (int c = 0; c < 3; ++c) {
+            if (!(m.albedo[c] >= 0.0f && m.albedo[c] <= 1.0f)) fail(inner, "reflectance outside [0, 1]");
+        }
+        const auto index = static_cast<std::uint32_t>(mScene.materials.size());
+        mScene.materials.push_back(m);
+        mMaterialOf.emplace(key, index);
+        return index;
+    }
+
+    std::uint32_t defaultMaterial() {
+        if (!mDefaultMaterial) {
+            Material m;
+            m.name = "mitsuba-default";
+            m.albedo = glm::vec3(kDefaultReflectance);
+            mDefaultMaterial = static_cast<std::uint32_t>(mScene.materials.size());
+            mScene.materials.push_back(m);
+            note("shapes without a bsdf get Mitsuba's default: diffuse, reflectance 0.5");
+        }
+        return *mDefaultMaterial;
+    }
+
+    glm::vec3 areaRadiance(const Element& emitter) {
+        if (std::string(emitter.node.attribute("type").value()) != "area") {
+            fail(emitter, "a shape's emitter must be of type 'area'");
+        }
+        const auto props = properties(emitter, {"radiance"});
+        const glm::vec3 l = props.count("radiance") ? color(props.at("radiance")) : glm::vec3(1.0f);
+        for (int c = 0; c < 3; ++c) {
+            if (!(l[c] >= 0.0f)) fail(emitter, "negative radiance");
+        }
+        return l;
+    }
+
+    void shape(const Element& e) {
+        const std::string type = e.node.attribute("type").value();
+        std::set<std::string> supported{"to_world"};
+        if (type == "obj" || type == "ply") supported.insert({"filename", "face_normals"});
+        if (type == "sphere") supported.insert({"center", "radius"});
+        const auto props = properties(e, supported);
+        std::optional<std::uint32_t> materialIndex;
+        std::optional<glm::vec3> emission;
+        for (const pugi::xml_node& c : e.node.children()) {
+            if (c.type() != pugi::node_element || c.attribute("name")) continue;
+            const Element child{c, e.doc};
+            const std::string tag = c.name();
+            Element target = child;
+            if (tag == "ref") {
+                const std::string id = attribute(child, "id");
+                const auto it = mIds.find(id);
+                if (it == mIds.end()) fail(child, "no element with id '" + id + "'");
+                target = it->second;
+            }
+            const std::string kind = target.node.name();
+            if (kind == "bsdf") {
+                if (materialIndex) fail(child, "a shape has one bsdf");
+                materialIndex = material(target);
+            } else if (kind == "emitter") {
+                if (emission) fail(child, "a shape has one emitter");
+                emission = areaRadiance(target);
+            } else {
+                fail(child, "not supported inside a shape (supported: bsdf, emitter, ref, transform, properties)");
+            }
+        }
+        const glm::dmat4 toWorld = props.count("to_world") ? transform(props.at("to_world")) : glm::dmat4(1.0);
+        std::vector<Mesh> meshes;
+        NormalOptions normals;
+        if (type == "obj" || type == "ply") {
+            if (!props.count("filename")) fail(e, "missing <string name=\"filename\">");
+            const std::string file = resolve(props.at("filename"), attribute(props.at("filename"), "value"));
+            MeshFile mf = type == "obj" ? loadObj(file) : loadPly(file);
+            meshes = std::move(mf.meshes);
+            if (props.count("face_normals") && attribute(props.at("face_normals"), "value") == "true") {
+                normals.source = NormalSource::Flat;
+            }
+        } else if (type == "rectangle") {
+            meshes.push_back(grid({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}));
+        } else if (type == "cube") {
+            meshes.push_back(cube());
+        } else if (type == "disk") {
+            meshes.push_back(disk());
+            note("disk tessellated into " + std::to_string(kMitsubaSphereSegments) + " triangles");
+        } else if (type == "sphere") {
+            const glm::dvec3 centre = props.count("center") ? components(props.at("center"), 0.0) : glm::dvec3(0.0);
+            const double radius = props.count("radius") ? number(props.at("radius"), "value") : 1.0;
+            if (!(radius > 0.0)) fail(e, "radius must be positive");
+            meshes.push_back(sphere(centre, radius));
+            note("sphere tessellated into " + std::to_string(kMitsubaSphereSegments) + " x " +
+                 std::to_string(kMitsubaSphereSegments / 2) + " quads with smooth normals (its area is 0.3% short of the sphere's)");
+        } else {
+            fail(e, "shape type not supported (supported: obj, ply, rectangle, cube, disk, sphere)");
+        }
+        const std::uint32_t materialUsed = materialIndex ? *materialIndex : defaultMaterial();
+        const std::string name = e.node.attribute("id") ? e.node.attribute("id").value() : type + std::to_string(mScene.meshes.size());
+        for (Mesh& mesh : meshes) {
+            bakeTransform(mesh, glm::mat4(toWorld));
+            const CleanupStats stats = cleanupMesh(mesh, normals);
+            mScene.loadStats.degenerateTriangles += stats.degenerateTriangles;
+            mScene.loadStats.duplicateTriangles += stats.duplicateTriangles;
+            mScene.loadStats.repairedNormals += stats.repairedNormals;
+            if (mesh.triangles.empty()) continue;
+            if (mesh.name.empty()) mesh.name = name;
+            mesh.material = materialUsed;
+            mesh.emission = emission.value_or(glm::vec3(0.0f));
+            mScene.meshes.push_back(std::move(mesh));
+        }
+    }
+
+    // A planar grid of one quad: corner `o`, edges `u` and `v`, facing u x v.
+    static Mesh grid(glm::vec3 o, glm::vec3 u, glm::vec3 v) {
+        Mesh m;
+        const glm::vec3 n = glm::normalize(glm::cross(u, v));
+        for (const glm::vec2 c : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
+            m.positions.push_back(o + c.x * u + c.y * v);
+            m.normals.push_back(n);
+            m.uvs.push_back(c);
+        }
+        m.triangles = {{0, 1, 2}, {0, 2, 3}};
+        return m;
+    }
+
+    static Mesh cube() {
+        Mesh out;
+        // Six faces of [-1, 1]^3, each facing out.
+        const glm::vec3 faces[6][3] = {{{1, -1, -1}, {0, 2, 0}, {0, 0, 2}},  {{-1, -1, -1}, {0, 0, 2}, {0, 2, 0}},
+                                       {{-1, 1, -1}, {0, 0, 2}, {2, 0, 0}},  {{-1, -1, -1}, {2, 0, 0}, {0, 0, 2}},
+                                       {{-1, -1, 1}, {2, 0, 0}, {0, 2, 0}},  {{-1, -1, -1}, {0, 2, 0}, {2, 0, 0}}};
+        for (const auto& f : faces) {
+            const Mesh q = grid(f[0], f[1], f[2]);
+            const auto base = static_cast<std::uint32_t>(out.positions.size());
+            out.positions.insert(out.positions.end(), q.positions.begin(), q.positions.end());
+            out.normals.insert(out.normals.end(), q.normals.begin(), q.normals.end());
+            out.uvs.insert(out.uvs.end(), q.uvs.begin(), q.uvs.end());
+            for (const glm::uvec3& t : q.triangles) out.triangles.push_back(t + base);
+        }
+        return out;
+    }
+
+    static Mesh disk() {
+        Mesh m;
+        m.positions.push_back({0, 0, 0});
+        m.normals.push_back({0, 0, 1});
+        for (int i = 0; i < kMitsubaSphereSegments; ++i) {
+            const double a = 2.0 * kPi * i / kMitsubaSphereSegments;
+            m.positions.push_back({float(std::cos(a)), float(std::sin(a)), 0.0f});
+            m.normals.push_back({0, 0, 1});
+            m.triangles.push_back({0u, std::uint32_t(1 + i), std::uint32_t(1 + (i + 1) % kMitsubaSphereSegments)});
+        }
+        return m;
+    }
+
+    static Mesh sphere(const glm::dvec3& centre, double radius) {
+        Mesh m;
+        const int around = kMitsubaSphereSegments, rings = kMitsubaSphereSegments / 2;
+        for (int r = 0; r <= rings; ++r) {
+            const double theta = kPi * r / rings;
+            for (int a = 0; a <= around; ++a) {
+                const double phi = 2.0 * kPi * a / around;
+                const glm::dvec3 n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+                m.positions.push_back(glm::vec3(centre + radius * n));
+                m.normals.push_back(glm::vec3(n));
+            }
+        }
+        for (int r = 0; r < rings; ++r) {
+            for (int a = 0; a < around; ++a) {
+                const auto i = std::uint32_t(r * (around + 1) + a), j = i + std::uint32_t(around + 1);
+                // Outward: counter-clockwise seen from outside.
+                if (r > 0) m.triangles.push_back({i, j, i + 1});
+                if (r + 1 < rings) m.triangles.push_back({i + 1, j, j + 1});
+            }
+        }
+        return m;
+    }
+
+    void emitter(const Element& e) {
+        const std::string type = e.node.attribute("type").value();
+        if (type == "point") {
+            const auto props = properties(e, {"position", "intensity", "to_world"});
+            Light l;
+            glm::dvec3 p(0.0);
+            if (props.count("position")) p = components(props.at("position"), 0.0);
+            if (props.count("to_world")) p = glm::dvec3(transform(props.at("to_world")) * glm::dvec4(p, 1.0));
+            l.position = glm::vec3(p);
+            l.intensity = props.count("intensity") ? color(props.at("intensity")) : glm::vec3(1.0f);
+            mScene.lights.push_back(l);
+        } else if (type == "constant") {
+            const auto props = properties(e, {"radiance"});
+            if (mScene.environment.present) fail(e, "a second environment emitter");
+            mScene.environment.present = true;
+            mScene.environment.radiance = props.count("radiance") ? color(props.at("radiance")) : glm::vec3(1.0f);
+        } else if (type == "area") {
+            fail(e, "an area emitter belongs inside a shape (or has an id a shape refers to)");
+        } else {
+            fail(e, "emitter type not supported (supported: area, point, constant; spot and envmap are not mapped yet)");
+        }
+    }
+
+    void sensor(const Element& e) {
+        if (mCameraSet) fail(e, "a second sensor (bundlelab renders one camera)");
+        if (std::string(e.node.attribute("type").value()) != "perspective") {
+            fail(e, "sensor type not supported (supported: perspective)");
+        }
+        const auto props = properties(e, {"fov", "fov_axis", "to_world"}, {"near_clip", "far_clip", "focus_distance"});
+        int width = kFilmWidth, height = kFilmHeight;
+        for (const pugi::xml_node& c : e.node.children()) {
+            if (c.type() != pugi::node_element || c.attribute("name")) continue;
+            const Element child{c, e.doc};
+            const std::string tag = c.name();
+            if (tag == "sampler") {
+                note("<sampler> ignored: the samples are the mode's");
+            } else if (tag == "film") {
+                if (std::string(c.attribute("type").value()) != "hdrfilm") fail(child, "film type not supported (supported: hdrfilm)");
+                const auto film = properties(child, {"width", "height"}, {"pixel_format", "rfilter", "component_format"});
+                for (const pugi::xml_node& f : c.children("rfilter")) {
+                    note(std::string("<rfilter type=\"") + f.attribute("type").value() + "\"> ignored: pixels are box-filtered");
+                }
+                if (film.count("width")) width = int(number(film.at("width"), "value"));
+                if (film.count("height")) height = int(number(film.at("height"), "value"));
+                if (width < 1 || height < 1 || width > 16384 || height > 16384) fail(child, "film size outside [1, 16384]");
+            } else {
+                fail(child, "not supported inside a sensor (supported: film, sampler)");
+            }
+        }
+        if (!props.count("fov")) fail(e, "missing <float name=\"fov\"> (focal_length is not supported)");
+        double fov = number(props.at("fov"), "value");
+        if (!(fov > 0.0 && fov < 180.0)) fail(props.at("fov"), "fov outside (0, 180) degrees");
+        const std::string axis = props.count("fov_axis") ? attribute(props.at("fov_axis"), "value") : "x";
+        FovAxis fovAxis = FovAxis::X;
+        if (axis == "y" || (axis == "smaller" && height < width) || (axis == "larger" && height > width)) {
+            fovAxis = FovAxis::Y;
+        } else if (axis == "diagonal") {
+            // The same frustum with the angle across x.
+            const double t = std::tan(0.5 * fov * kPi / 180.0) * width / std::hypot(double(width), double(height));
+            fov = 2.0 * std::atan(t) * 180.0 / kPi;
+            note("sensor fov_axis 'diagonal' converted to " + formatNumber(fov) + " degrees across x");
+        } else if (axis != "x" && axis != "smaller" && axis != "larger") {
+            fail(props.at("fov_axis"), "fov_axis '" + axis + "' not supported (x, y, smaller, larger, diagonal)");
+        }
+        const glm::dmat4 m = props.count("to_world") ? transform(props.at("to_world")) : glm::dmat4(1.0);
+        Camera& camera = mScene.camera;
+        camera.pose.position = glm::vec3(m * glm::dvec4(0, 0, 0, 1));
+        camera.pose.target = glm::vec3(m * glm::dvec4(0, 0, 1, 1));
+        camera.pose.up = glm::vec3(glm::normalize(glm::dvec3(m * glm::dvec4(0, 1, 0, 0))));
+        camera.fovDegrees = float(fov);
+        camera.fovAxis = fovAxis;
+        camera.resolution = {width, height};
+        mCameraSet = true;
+    }
+
+    fs::path mRoot;
+    std::deque<Document> mDocs;
+    std::map<std::string, std::string> mDefaults;
+    std::vector<Element> mTop;
+    std::map<std::string, Element> mIds;
+    std::map<std::string, std::uint32_t> mMaterialOf;
+    std::optional<std::uint32_t> mDefaultMaterial;
+    std::vector<std::string> mNotes;
+    bool mCameraSet = false;
+    Scene mScene;
+};
+
+} // namespace
+
+Scene loadMitsubaScene(const std::string& path) { return Importer(path).run(path); }
+
+} // namespace bl
