@@ -100,6 +100,27 @@ TEST(MitsubaLoader, ReferencesIncludesEmittersAndShapes) {
                             [](const std::string& n) { return n.find("sphere tessellated") != std::string::npos; }));
 }
 
+// A spot along its to_world's +z: cutoff_angle and beam_width become the cone and its edge (the
+// edge's shape differs: Mitsuba's is linear in angle, ours a smoothstep in cosine; the note says
+// by how much).
+TEST(MitsubaLoader, SpotLightKeepsItsConeAndStatesTheEdge) {
+    const Scene s = loadScene(scene(R"(<shape type="rectangle"/>
+        <emitter type="spot">
+            <rgb name="intensity" value="100"/>
+            <float name="cutoff_angle" value="30"/>
+            <transform name="to_world"><lookat origin="0, 5, 0" target="0, 0, 0" up="0, 0, 1"/></transform>
+        </emitter>)"));
+    ASSERT_EQ(s.lights.size(), 1u);
+    const Light& l = s.lights[0];
+    EXPECT_EQ(l.type, Light::Type::Spot);
+    EXPECT_TRUE(near(l.position, {0, 5, 0}));
+    EXPECT_TRUE(near(l.direction, {0, -1, 0}));
+    EXPECT_FLOAT_EQ(l.coneAngleDegrees, 30.0f);
+    EXPECT_FLOAT_EQ(l.falloffDegrees, 7.5f); // Mitsuba's default beam_width: 3/4 of the cutoff
+    EXPECT_TRUE(std::any_of(s.importNotes.begin(), s.importNotes.end(),
+                            [](const std::string& n) { return n.find("spot (cutoff 30") != std::string::npos; }));
+}
+
 // What is not supported is refused with the file, the line and what is supported; never a
 // silently different scene.
 TEST(MitsubaLoader, UnsupportedElementsAreErrorsWithFileAndLine) {
