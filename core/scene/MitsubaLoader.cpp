@@ -1,6 +1,7 @@
 #include "scene/MitsubaLoader.h"
 
 #include "base/Error.h"
+#include "image/ImageIO.h"
 #include "scene/MeshCleanup.h"
 #include "scene/MeshFile.h"
 #include "scene/MeshTransform.h"
@@ -511,6 +512,8 @@ private:
             mScene.lights.push_back(l);
         } else if (type == "spot") {
             mScene.lights.push_back(spot(e));
+        } else if (type == "envmap") {
+            environmentMap(e);
         } else if (type == "constant") {
             const auto props = properties(e, {"radiance"});
             if (mScene.environment.present) fail(e, "a second environment emitter");
@@ -519,7 +522,7 @@ private:
         } else if (type == "area") {
             fail(e, "an area emitter belongs inside a shape (or has an id a shape refers to)");
         } else {
-            fail(e, "emitter type not supported (supported: area, point, spot, constant; envmap is not mapped yet)");
+            fail(e, "emitter type not supported (supported: area, point, spot, constant, envmap)");
         }
     }
 
@@ -564,6 +567,38 @@ private:
                       cutoff, beam, 100.0 * (ours / theirs - 1.0), worst);
         note(text);
         return l;
+    }
+
+    // Mitsuba's envmap looks a local direction v up at u = atan2(v.x, -v.z) / 2 pi, v = acos(v.y) /
+    // pi (envmap.cpp), v = to_world^-1 d; bundlelab's lat-long (CONVENTIONS.md, shared/EnvMap.h)
+    // looks d up at u = atan2(m.z, m.x) / 2 pi + 1/2 of m = R_y(-rotation) d: the same texel for
+    // every d when to_world is a rotation by alpha about +y and rotation = alpha - 90 degrees.
+    void environmentMap(const Element& e) {
+        if (mScene.environment.present) fail(e, "a second environment emitter");
+        const auto props = properties(e, {"filename", "scale", "to_world"});
+        if (!props.count("filename")) fail(e, "missing <string name=\"filename\">");
+        Environment& env = mScene.environment;
+        env.file = resolve(props.at("filename"), attribute(props.at("filename"), "value"));
+        env.map = readImage(env.file);
+        for (const glm::vec3& p : env.map.pixels()) {
+            if (!(p.x >= 0.0f && p.y >= 0.0f && p.z >= 0.0f)) fail(e, "the map has negative or non-finite radiance");
+        }
+        env.scale = props.count("scale") ? float(number(props.at("scale"), "value")) : 1.0f;
+        if (!(env.scale >= 0.0f)) fail(e, "negative scale");
+        double alpha = 0.0;
+        if (props.count("to_world")) {
+            const glm::dmat4 m = transform(props.at("to_world"));
+            const glm::dmat3 r(m);
+            const double off = glm::length(glm::dvec3(r[1]) - glm::dvec3(0, 1, 0)) +
+                               std::abs(r[0][1]) + std::abs(r[2][1]) + std::abs(glm::determinant(r) - 1.0) +
+                               std::abs(glm::dot(r[0], r[0]) - 1.0) + std::abs(glm::dot(r[0], r[2]));
+            if (off > 1e-6) fail(props.at("to_world"), "an envmap's to_world must be a rotation about +y");
+            alpha = std::atan2(-r[0][2], r[0][0]) * 180.0 / kPi;
+        }
+        env.rotationDegrees = float(alpha - 90.0);
+        env.present = true;
+        note("envmap read with rotation " + formatNumber(env.rotationDegrees) +
+             " degrees (Mitsuba's longitude starts at -z, bundlelab's at -x)");
     }
 
     void sensor(const Element& e) {

@@ -1,6 +1,8 @@
 // Mitsuba 3 XML import (core/scene/MitsubaLoader.h): what each supported element becomes, and a
 // clear error naming the file and line for what is not supported. The real Mitsuba Cornell box
 // against its hand-written TOML twin: tests/modes/reference/MitsubaTwinTest.cpp.
+#include "image/ImageIO.h"
+#include "sampling/EnvironmentLight.h"
 #include "scene/MitsubaLoader.h"
 #include "scene/SceneLoader.h"
 #include "support/TestFiles.h"
@@ -8,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <utility>
 
 using namespace bl;
@@ -121,6 +125,35 @@ TEST(MitsubaLoader, SpotLightKeepsItsConeAndStatesTheEdge) {
                             [](const std::string& n) { return n.find("spot (cutoff 30") != std::string::npos; }));
 }
 
+// An envmap (a rotation about +y in to_world) looks every direction up where Mitsuba does:
+// Mitsuba's envmap.cpp reads local direction v at u = atan2(v.x, -v.z) / 2 pi, v = acos(v.y) / pi,
+// v = to_world^-1 d. A map that is dark but for one texel: the world direction Mitsuba sees that
+// texel's centre in must find it here too, at several rotations.
+TEST(MitsubaLoader, EnvironmentMapLooksUpWhereMitsubaDoes) {
+    constexpr int kW = 16, kH = 8;
+    constexpr double kPi = 3.14159265358979323846;
+    for (const double alpha : {0.0, 30.0, -135.0}) {
+        for (const glm::ivec2 texel : {glm::ivec2(3, 2), glm::ivec2(12, 5)}) {
+            Image map(kW, kH);
+            map.pixels()[std::size_t(texel.y * kW + texel.x)] = glm::vec3(100.0f);
+            const std::string file = bl::test::tempDir() + "/sky.exr";
+            writeExr(file, map);
+            const Scene s = loadScene(scene("<shape type=\"rectangle\"/><emitter type=\"envmap\">"
+                                            "<string name=\"filename\" value=\"" + file + "\"/>"
+                                            "<transform name=\"to_world\"><rotate y=\"1\" angle=\"" +
+                                            std::to_string(alpha) + "\"/></transform></emitter>"));
+            // Mitsuba's local direction at the texel's centre, then to_world.
+            const double u = (texel.x + 0.5) / kW, v = (texel.y + 0.5) / kH;
+            const double phi = 2.0 * kPi * u, theta = kPi * v;
+            const glm::dvec3 local(std::sin(phi) * std::sin(theta), std::cos(theta), -std::cos(phi) * std::sin(theta));
+            const glm::dvec3 world = glm::dvec3(glm::rotate(glm::dmat4(1.0), alpha * kPi / 180.0, glm::dvec3(0, 1, 0)) *
+                                                glm::dvec4(local, 0.0));
+            const glm::vec3 seen = EnvironmentLight(s.environment, false).radiance(glm::vec3(world));
+            EXPECT_NEAR(seen.x, 100.0f, 1e-2f) << "rotation " << alpha << ", texel " << texel.x << ", " << texel.y;
+        }
+    }
+}
+
 // What is not supported is refused with the file, the line and what is supported; never a
 // silently different scene.
 TEST(MitsubaLoader, UnsupportedElementsAreErrorsWithFileAndLine) {
@@ -133,7 +166,7 @@ TEST(MitsubaLoader, UnsupportedElementsAreErrorsWithFileAndLine) {
         {"<shape type=\"rectangle\"><bsdf type=\"roughconductor\"/></shape>", "bsdf type not supported"},
         {"<shape type=\"rectangle\"><ref id=\"nowhere\"/></shape>", "no element with id 'nowhere'"},
         {"<shape type=\"rectangle\"><float name=\"radius\" value=\"1\"/></shape>", "not supported here"},
-        {"<emitter type=\"envmap\"/>", "emitter type not supported"},
+        {"<emitter type=\"directional\"/>", "emitter type not supported"},
         {"<shape type=\"rectangle\"><transform name=\"to_world\"><skew/></transform></shape>",
          "transform operation not supported"},
         {"<shape type=\"sphere\"><float name=\"radius\" value=\"$missing\"/></shape>", "'$missing' has no <default>"},
