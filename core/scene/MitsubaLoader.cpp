@@ -285,7 +285,7 @@ private:
         } else if (tag == "emitter") {
             if (!e.node.attribute("id")) emitter(e);
         } else if (tag == "bsdf" || tag == "texture") {
-            // Used where a shape refers to it.
+            // Used where a shape or a bsdf refers to it.
         } else if (tag == "integrator" || tag == "sampler" || tag == "rfilter" || tag == "film") {
             note("<" + tag + " type=\"" + e.node.attribute("type").value() +
                  "\"> ignored: how to render is the mode's choice, not the scene's");
@@ -325,13 +325,43 @@ private:
                         "not mapped to bundlelab's Phong / Ashikhmin-Shirley yet");
         }
         const auto props = properties(inner, {"reflectance"});
-        m.albedo = props.count("reflectance") ? color(props.at("reflectance")) : glm::vec3(kDefaultReflectance);
+        m.albedo = glm::vec3(kDefaultReflectance);
+        if (props.count("reflectance")) {
+            const Element& r = props.at("reflectance");
+            const std::string tag = r.node.name();
+            if (tag == "texture" || tag == "ref") {
+                m.albedo = glm::vec3(1.0f); // the texture is the reflectance
+                m.albedoTexture = texture(tag == "ref" ? referenced(r, "texture") : r);
+            } else {
+                m.albedo = color(r);
+            }
+        }
         for (int c = 0; c < 3; ++c) {
             if (!(m.albedo[c] >= 0.0f && m.albedo[c] <= 1.0f)) fail(inner, "reflectance outside [0, 1]");
         }
         const auto index = static_cast<std::uint32_t>(mScene.materials.size());
         mScene.materials.push_back(m);
         mMaterialOf.emplace(key, index);
+        return index;
+    }
+
+    // A bitmap texture (8-bit, sRGB-encoded as Mitsuba reads one unless `raw`; bilinear, repeat),
+    // index into the scene's textures; one per file.
+    int texture(const Element& t) {
+        if (std::string(t.node.attribute("type").value()) != "bitmap") fail(t, "texture type not supported (supported: bitmap)");
+        const auto props = properties(t, {"filename", "filter_type", "wrap_mode", "raw"});
+        if (!props.count("filename")) fail(t, "missing <string name=\"filename\">");
+        const auto is = [&](const char* name, const char* value) {
+            return !props.count(name) || attribute(props.at(name), "value") == value;
+        };
+        if (!is("filter_type", "bilinear") || !is("wrap_mode", "repeat") || !is("raw", "false")) {
+            fail(t, "only bilinear, repeating, sRGB-decoded bitmaps are supported (filter_type, wrap_mode, raw)");
+        }
+        const std::string path = resolve(props.at("filename"), attribute(props.at("filename"), "value"));
+        if (const auto it = mTextureOf.find(path); it != mTextureOf.end()) return it->second;
+        const int index = static_cast<int>(mScene.textures.size());
+        mScene.textures.push_back({path, readRgba8(path)});
+        mTextureOf.emplace(path, index);
         return index;
     }
 
@@ -397,6 +427,13 @@ private:
             const std::string file = resolve(props.at("filename"), attribute(props.at("filename"), "value"));
             MeshFile mf = type == "obj" ? loadObj(file) : loadPly(file);
             meshes = std::move(mf.meshes);
+            if (type == "ply") {
+                // Mitsuba reads a PLY's v as it is (image row 0 at v = 0), an OBJ's flipped;
+                // bundlelab flips every v (the OBJ convention): undo it for PLY.
+                for (Mesh& mesh : meshes) {
+                    for (glm::vec2& uv : mesh.uvs) uv.y = 1.0f - uv.y;
+                }
+            }
             if (props.count("face_normals") && attribute(props.at("face_normals"), "value") == "true") {
                 normals.source = NormalSource::Flat;
             }
@@ -418,6 +455,10 @@ private:
             fail(e, "shape type not supported (supported: obj, ply, rectangle, cube, disk, sphere)");
         }
         const std::uint32_t materialUsed = materialIndex ? *materialIndex : defaultMaterial();
+        if (mScene.materials[materialUsed].albedoTexture >= 0 && type != "obj" && type != "ply") {
+            fail(e, "a textured bsdf on an analytic shape is not supported (its texture coordinates are not mapped); "
+                    "textures on obj and ply shapes are");
+        }
         const std::string name = e.node.attribute("id") ? e.node.attribute("id").value() : type + std::to_string(mScene.meshes.size());
         for (Mesh& mesh : meshes) {
             bakeTransform(mesh, glm::mat4(toWorld));
@@ -659,6 +700,7 @@ private:
     std::vector<Element> mTop;
     std::map<std::string, Element> mIds;
     std::map<std::string, std::uint32_t> mMaterialOf;
+    std::map<std::string, int> mTextureOf;
     std::optional<std::uint32_t> mDefaultMaterial;
     std::vector<std::string> mNotes;
     bool mCameraSet = false;

@@ -154,6 +154,30 @@ TEST(MitsubaLoader, EnvironmentMapLooksUpWhereMitsubaDoes) {
     }
 }
 
+// A bitmap texture as a diffuse reflectance on an obj shape: the material's albedo texture (the
+// texture is the reflectance); one texture per file; on an analytic shape it is refused.
+TEST(MitsubaLoader, BitmapReflectanceOnMeshes) {
+    Image red(2, 2);
+    for (glm::vec3& p : red.pixels()) p = {1.0f, 0.0f, 0.0f};
+    writePng(bl::test::tempDir() + "/red.png", red);
+    writeTempFile("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
+    const std::string bsdf = R"(<bsdf type="diffuse" id="painted">
+            <texture type="bitmap" name="reflectance"><string name="filename" value="red.png"/></texture></bsdf>)";
+    const Scene s = loadScene(scene(bsdf + R"(
+        <shape type="obj"><string name="filename" value="quad.obj"/><ref id="painted"/></shape>
+        <shape type="obj"><string name="filename" value="quad.obj"/><ref id="painted"/>
+            <transform name="to_world"><translate z="1"/></transform></shape>)"));
+    ASSERT_EQ(s.meshes.size(), 2u);
+    const Material& m = s.materials.at(s.meshes[0].material);
+    ASSERT_EQ(m.albedoTexture, 0);
+    EXPECT_EQ(s.textures.size(), 1u);
+    EXPECT_EQ(s.textures[0].image.width, 2);
+    EXPECT_TRUE(near(m.albedo, glm::vec3(1.0f)));
+    const std::string e = errorOf([&] { loadScene(scene(bsdf + R"(<shape type="rectangle"><ref id="painted"/></shape>)",
+                                                        "analytic.xml")); });
+    EXPECT_NE(e.find("textured bsdf on an analytic shape"), std::string::npos) << e;
+}
+
 // What is not supported is refused with the file, the line and what is supported; never a
 // silently different scene.
 TEST(MitsubaLoader, UnsupportedElementsAreErrorsWithFileAndLine) {
