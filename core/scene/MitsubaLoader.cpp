@@ -279,7 +279,12 @@ private:
     void topLevel(const Element& e) {
         const std::string tag = e.node.name();
         if (tag == "shape") {
-            shape(e);
+            const std::string type = e.node.attribute("type").value();
+            if (type == "instance") {
+                instance(e);
+            } else if (type != "shapegroup") { // a shape group is drawn by its instances
+                shape(e, glm::dmat4(1.0));
+            }
         } else if (tag == "sensor") {
             sensor(e);
         } else if (tag == "emitter") {
@@ -389,7 +394,29 @@ private:
         return l;
     }
 
-    void shape(const Element& e) {
+    // <shape type="instance"> of a <shape type="shapegroup">: each shape of the group placed by
+    // the instance's to_world after its own (copied into the scene: bundlelab has no instancing).
+    void instance(const Element& e) {
+        const auto props = properties(e, {"to_world"});
+        const glm::dmat4 toWorld = props.count("to_world") ? transform(props.at("to_world")) : glm::dmat4(1.0);
+        std::vector<Element> groups;
+        for (const pugi::xml_node& c : e.node.children("ref")) groups.push_back(referenced({c, e.doc}, "shape"));
+        if (groups.size() != 1 || std::string(groups[0].node.attribute("type").value()) != "shapegroup") {
+            fail(e, "an instance refers to exactly one shapegroup (<ref id=\"...\"/>)");
+        }
+        for (const pugi::xml_node& c : groups[0].node.children()) {
+            if (c.type() != pugi::node_element) continue;
+            const Element child{c, groups[0].doc};
+            if (std::string(c.name()) != "shape") fail(child, "a shapegroup holds shapes only");
+            const std::string type = c.attribute("type").value();
+            if (type == "instance" || type == "shapegroup") fail(child, "nested shape groups are not supported");
+            shape(child, toWorld);
+        }
+        note("shapegroup instances copied into the scene");
+    }
+
+    // A shape's meshes in the scene, placed by `outer` after the shape's own to_world.
+    void shape(const Element& e, const glm::dmat4& outer) {
         const std::string type = e.node.attribute("type").value();
         std::set<std::string> supported{"to_world"};
         if (type == "obj" || type == "ply") supported.insert({"filename", "face_normals"});
@@ -419,7 +446,7 @@ private:
                 fail(child, "not supported inside a shape (supported: bsdf, emitter, ref, transform, properties)");
             }
         }
-        const glm::dmat4 toWorld = props.count("to_world") ? transform(props.at("to_world")) : glm::dmat4(1.0);
+        const glm::dmat4 toWorld = outer * (props.count("to_world") ? transform(props.at("to_world")) : glm::dmat4(1.0));
         std::vector<Mesh> meshes;
         NormalOptions normals;
         if (type == "obj" || type == "ply") {
@@ -452,7 +479,7 @@ private:
             note("sphere tessellated into " + std::to_string(kMitsubaSphereSegments) + " x " +
                  std::to_string(kMitsubaSphereSegments / 2) + " quads with smooth normals (its area is 0.3% short of the sphere's)");
         } else {
-            fail(e, "shape type not supported (supported: obj, ply, rectangle, cube, disk, sphere)");
+            fail(e, "shape type not supported (supported: obj, ply, rectangle, cube, disk, sphere, shapegroup, instance)");
         }
         const std::uint32_t materialUsed = materialIndex ? *materialIndex : defaultMaterial();
         if (mScene.materials[materialUsed].albedoTexture >= 0 && type != "obj" && type != "ply") {

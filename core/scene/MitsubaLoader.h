@@ -1,7 +1,7 @@
 // Mitsuba 3 XML scenes, the subset a global-illumination scene uses, read into the scene model:
 // <include>, <default> and $name parameters, <ref>/id (forward too, across includes); shapes obj,
 // ply, rectangle, cube, disk, sphere (the last two tessellated, resolution stated) with to_world
-// (translate, rotate, scale, matrix, lookat, composed in order); bsdfs diffuse (rgb or float
+// (translate, rotate, scale, matrix, lookat, composed in order), and shapegroup instances (copied); bsdfs diffuse (rgb or float
 // reflectance, or a bitmap texture on obj/ply shapes) and twosided around one; emitters area (in a
 // shape or by reference), point, spot (its edge profile mapped, the difference stated), constant
 // and envmap (to_world a rotation about +y); a perspective sensor (fov, fov_axis

@@ -178,6 +178,21 @@ TEST(MitsubaLoader, BitmapReflectanceOnMeshes) {
     EXPECT_NE(e.find("textured bsdf on an analytic shape"), std::string::npos) << e;
 }
 
+// A shapegroup drawn by two instances: its shapes copied into the scene, each placed by the
+// instance's to_world after its own.
+TEST(MitsubaLoader, InstancesPlaceTheirGroupsShapes) {
+    const Scene s = loadScene(scene(R"(<shape type="shapegroup" id="pair">
+            <shape type="cube"><transform name="to_world"><scale value="0.5"/></transform></shape>
+            <shape type="rectangle"><transform name="to_world"><translate z="2"/></transform></shape>
+        </shape>
+        <shape type="instance"><ref id="pair"/><transform name="to_world"><translate x="10"/></transform></shape>
+        <shape type="instance"><ref id="pair"/><transform name="to_world"><translate x="-10"/></transform></shape>)"));
+    ASSERT_EQ(s.meshes.size(), 4u);
+    const Bounds b = s.bounds();
+    EXPECT_TRUE(near(b.lo, {-11, -1, -0.5f}, 1e-4f));
+    EXPECT_TRUE(near(b.hi, {11, 1, 2}, 1e-4f));
+}
+
 // What is not supported is refused with the file, the line and what is supported; never a
 // silently different scene.
 TEST(MitsubaLoader, UnsupportedElementsAreErrorsWithFileAndLine) {
@@ -185,7 +200,7 @@ TEST(MitsubaLoader, UnsupportedElementsAreErrorsWithFileAndLine) {
     // The body starts on line 9 of the file (after <scene>, the default and the 6-line sensor).
     std::string e = refusal("<shape type=\"hair\"/>");
     EXPECT_NE(e.find("bad.xml:9: <shape type=\"hair\">"), std::string::npos) << e;
-    EXPECT_NE(e.find("supported: obj, ply, rectangle, cube, disk, sphere"), std::string::npos) << e;
+    EXPECT_NE(e.find("supported: obj, ply, rectangle, cube, disk, sphere, shapegroup, instance"), std::string::npos) << e;
     const std::pair<const char*, const char*> cases[] = {
         {"<shape type=\"rectangle\"><bsdf type=\"roughconductor\"/></shape>", "bsdf type not supported"},
         {"<shape type=\"rectangle\"><ref id=\"nowhere\"/></shape>", "no element with id 'nowhere'"},
