@@ -5,6 +5,7 @@
 #include "scene/MeshCleanup.h"
 #include "scene/MeshFile.h"
 #include "scene/MeshTransform.h"
+#include "scene/ShapeMeshes.h"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -465,17 +466,17 @@ private:
                 normals.source = NormalSource::Flat;
             }
         } else if (type == "rectangle") {
-            meshes.push_back(grid({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}));
+            meshes.push_back(quadMesh({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}));
         } else if (type == "cube") {
-            meshes.push_back(cube());
+            meshes.push_back(cubeMesh());
         } else if (type == "disk") {
-            meshes.push_back(disk());
+            meshes.push_back(diskMesh(kMitsubaSphereSegments));
             note("disk tessellated into " + std::to_string(kMitsubaSphereSegments) + " triangles");
         } else if (type == "sphere") {
             const glm::dvec3 centre = props.count("center") ? components(props.at("center"), 0.0) : glm::dvec3(0.0);
             const double radius = props.count("radius") ? number(props.at("radius"), "value") : 1.0;
             if (!(radius > 0.0)) fail(e, "radius must be positive");
-            meshes.push_back(sphere(centre, radius));
+            meshes.push_back(sphereMesh(centre, radius, kMitsubaSphereSegments));
             note("sphere tessellated into " + std::to_string(kMitsubaSphereSegments) + " x " +
                  std::to_string(kMitsubaSphereSegments / 2) + " quads with smooth normals (its area is 0.3% short of the sphere's)");
         } else {
@@ -499,72 +500,6 @@ private:
             mesh.emission = emission.value_or(glm::vec3(0.0f));
             mScene.meshes.push_back(std::move(mesh));
         }
-    }
-
-    // A planar grid of one quad: corner `o`, edges `u` and `v`, facing u x v.
-    static Mesh grid(glm::vec3 o, glm::vec3 u, glm::vec3 v) {
-        Mesh m;
-        const glm::vec3 n = glm::normalize(glm::cross(u, v));
-        for (const glm::vec2 c : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
-            m.positions.push_back(o + c.x * u + c.y * v);
-            m.normals.push_back(n);
-            m.uvs.push_back(c);
-        }
-        m.triangles = {{0, 1, 2}, {0, 2, 3}};
-        return m;
-    }
-
-    static Mesh cube() {
-        Mesh out;
-        // Six faces of [-1, 1]^3, each facing out.
-        const glm::vec3 faces[6][3] = {{{1, -1, -1}, {0, 2, 0}, {0, 0, 2}},  {{-1, -1, -1}, {0, 0, 2}, {0, 2, 0}},
-                                       {{-1, 1, -1}, {0, 0, 2}, {2, 0, 0}},  {{-1, -1, -1}, {2, 0, 0}, {0, 0, 2}},
-                                       {{-1, -1, 1}, {2, 0, 0}, {0, 2, 0}},  {{-1, -1, -1}, {0, 2, 0}, {2, 0, 0}}};
-        for (const auto& f : faces) {
-            const Mesh q = grid(f[0], f[1], f[2]);
-            const auto base = static_cast<std::uint32_t>(out.positions.size());
-            out.positions.insert(out.positions.end(), q.positions.begin(), q.positions.end());
-            out.normals.insert(out.normals.end(), q.normals.begin(), q.normals.end());
-            out.uvs.insert(out.uvs.end(), q.uvs.begin(), q.uvs.end());
-            for (const glm::uvec3& t : q.triangles) out.triangles.push_back(t + base);
-        }
-        return out;
-    }
-
-    static Mesh disk() {
-        Mesh m;
-        m.positions.push_back({0, 0, 0});
-        m.normals.push_back({0, 0, 1});
-        for (int i = 0; i < kMitsubaSphereSegments; ++i) {
-            const double a = 2.0 * kPi * i / kMitsubaSphereSegments;
-            m.positions.push_back({float(std::cos(a)), float(std::sin(a)), 0.0f});
-            m.normals.push_back({0, 0, 1});
-            m.triangles.push_back({0u, std::uint32_t(1 + i), std::uint32_t(1 + (i + 1) % kMitsubaSphereSegments)});
-        }
-        return m;
-    }
-
-    static Mesh sphere(const glm::dvec3& centre, double radius) {
-        Mesh m;
-        const int around = kMitsubaSphereSegments, rings = kMitsubaSphereSegments / 2;
-        for (int r = 0; r <= rings; ++r) {
-            const double theta = kPi * r / rings;
-            for (int a = 0; a <= around; ++a) {
-                const double phi = 2.0 * kPi * a / around;
-                const glm::dvec3 n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
-                m.positions.push_back(glm::vec3(centre + radius * n));
-                m.normals.push_back(glm::vec3(n));
-            }
-        }
-        for (int r = 0; r < rings; ++r) {
-            for (int a = 0; a < around; ++a) {
-                const auto i = std::uint32_t(r * (around + 1) + a), j = i + std::uint32_t(around + 1);
-                // Outward: counter-clockwise seen from outside.
-                if (r > 0) m.triangles.push_back({i, j, i + 1});
-                if (r + 1 < rings) m.triangles.push_back({i + 1, j, j + 1});
-            }
-        }
-        return m;
     }
 
     void emitter(const Element& e) {
