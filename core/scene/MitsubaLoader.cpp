@@ -12,6 +12,7 @@
 #include <pugixml.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <deque>
@@ -96,7 +97,7 @@ private:
             const Element e{node, &doc};
             const std::string tag = node.name();
             if (tag == "include") {
-                collect(resolve(e, attribute(e, "filename")), depth + 1, &e);
+                collect(resolveInclude(e, attribute(e, "filename")), depth + 1, &e);
             } else if (tag == "default") {
                 // The first definition wins (Mitsuba: a -D on the command line, then the file's).
                 mDefaults.emplace(attribute(e, "name"), node.attribute("value").value());
@@ -153,6 +154,14 @@ private:
                     fs::path(e.doc->path).parent_path().string() + ")");
     }
 
+    // An included file: relative to the including file's folder first (Mitsuba's parser), then
+    // the main file's.
+    std::string resolveInclude(const Element& e, const std::string& name) const {
+        const fs::path local = fs::path(e.doc->path).parent_path() / name;
+        if (!fs::path(name).is_absolute() && fs::exists(local)) return local.string();
+        return resolve(e, name);
+    }
+
     // --- Values ------------------------------------------------------------------------------
 
     std::vector<double> numbers(const Element& e, const std::string& text) const {
@@ -198,13 +207,37 @@ private:
         return out;
     }
 
+    // Mitsuba refuses a rectangle or disk whose to_world shears it.
+    static void requireUnsheared(const Element& e, const glm::dmat4& m) {
+        const glm::dvec3 x(m[0]), y(m[1]);
+        if (std::abs(glm::dot(x, y)) > 1e-6 * glm::length(x) * glm::length(y)) fail(e, "to_world shears this shape");
+    }
+
+    // A to_world that scales all axes alike (a rotation, uniform scale and translation).
+    static void requireSimilarity(const Element& e, const glm::dmat4& m, const std::string& message) {
+        const glm::dvec3 x(m[0]), y(m[1]), z(m[2]);
+        const double l = glm::length(x), tolerance = 1e-6 * l * l;
+        if (std::abs(glm::dot(x, y)) > tolerance || std::abs(glm::dot(y, z)) > tolerance ||
+            std::abs(glm::dot(x, z)) > tolerance || std::abs(glm::length(y) - l) > 1e-6 * l ||
+            std::abs(glm::length(z) - l) > 1e-6 * l) {
+            fail(e, message);
+        }
+    }
+
+    // Mitsuba's up for a lookat without one: the first vector of coordinate_system(n) (Duff et
+    // al.'s frame), (1, 0, 0) when looking down -z.
+    static glm::dvec3 perpendicular(const glm::dvec3& n) {
+        const double sign = std::copysign(1.0, n.z), a = -1.0 / (sign + n.z), b = n.x * n.y * a;
+        return {n.x * n.x * a * sign + 1.0, b * sign, -n.x * sign};
+    }
+
     // The named property children of an element (<float name="fov" .../> ...), checked against
     // what this element supports.
     std::map<std::string, Element> properties(const Element& e, const std::set<std::string>& supported,
                                               const std::set<std::string>& ignored = {}) {
         std::map<std::string, Element> out;
         for (const pugi::xml_node& c : e.node.children()) {
-            if (c.type() != pugi::node_element || !c.attribute("name")) continue;
+            if (c.type() != pugi::node_element || !c.attribute("name") || isObject(c)) continue;
             const Element child{c, e.doc};
             const std::string name = c.attribute("name").value();
             if (ignored.count(name)) {
@@ -219,6 +252,13 @@ private:
             out.emplace(name, child);
         }
         return out;
+    }
+
+    // A nested object or a reference (<bsdf name="..."> and <ref name="bsdf" .../> are allowed):
+    // not a property, even with a name. A texture with a name is a property's value.
+    static bool isObject(const pugi::xml_node& c) {
+        const std::string tag = c.name();
+        return tag == "ref" || tag == "bsdf" || tag == "emitter" || tag == "shape";
     }
 
     glm::vec3 color(const Element& e) const {
@@ -256,8 +296,8 @@ private:
                 }
             } else if (tag == "lookat") {
                 const glm::dvec3 origin = triple(op, "origin"), target = triple(op, "target");
-                const glm::dvec3 up = op.node.attribute("up") ? triple(op, "up") : glm::dvec3(0, 1, 0);
                 const glm::dvec3 dir = glm::normalize(target - origin);
+                const glm::dvec3 up = op.node.attribute("up") ? triple(op, "up") : perpendicular(dir);
                 glm::dvec3 left = glm::cross(up, dir);
                 if (!(glm::length(left) > 0.0)) fail(op, "'up' is parallel to the view direction");
                 left = glm::normalize(left);
@@ -289,7 +329,8 @@ private:
         } else if (tag == "sensor") {
             sensor(e);
         } else if (tag == "emitter") {
-            if (!e.node.attribute("id")) emitter(e);
+            // Mitsuba adds every top-level object; an area emitter waits for the shape that refers to it.
+            if (std::string(e.node.attribute("type").value()) != "area" || !e.node.attribute("id")) emitter(e);
         } else if (tag == "bsdf" || tag == "texture") {
             // Used where a shape or a bsdf refers to it.
         } else if (tag == "integrator" || tag == "sampler" || tag == "rfilter" || tag == "film") {
@@ -330,7 +371,12 @@ private:
             fail(inner, "bsdf type not supported (supported: diffuse, twosided around a diffuse); glossy bsdfs are "
                         "not mapped to bundlelab's Phong / Ashikhmin-Shirley yet");
         }
-        const auto props = properties(inner, {"reflectance"});
+        auto props = properties(inner, {"reflectance"});
+        for (const pugi::xml_node& c : inner.node.children("ref")) {
+            const Element ref{c, inner.doc};
+            if (std::string(c.attribute("name").value()) != "reflectance") fail(ref, "only the reflectance may be a reference here");
+            props.emplace("reflectance", ref);
+        }
         m.albedo = glm::vec3(kDefaultReflectance);
         if (props.count("reflectance")) {
             const Element& r = props.at("reflectance");
@@ -426,7 +472,7 @@ private:
         std::optional<std::uint32_t> materialIndex;
         std::optional<glm::vec3> emission;
         for (const pugi::xml_node& c : e.node.children()) {
-            if (c.type() != pugi::node_element || c.attribute("name")) continue;
+            if (c.type() != pugi::node_element || (c.attribute("name") && !isObject(c))) continue;
             const Element child{c, e.doc};
             const std::string tag = c.name();
             Element target = child;
@@ -449,7 +495,7 @@ private:
         }
         const glm::dmat4 toWorld = outer * (props.count("to_world") ? transform(props.at("to_world")) : glm::dmat4(1.0));
         std::vector<Mesh> meshes;
-        NormalOptions normals;
+        bool faceNormals = false;
         if (type == "obj" || type == "ply") {
             if (!props.count("filename")) fail(e, "missing <string name=\"filename\">");
             const std::string file = resolve(props.at("filename"), attribute(props.at("filename"), "value"));
@@ -462,17 +508,22 @@ private:
                     for (glm::vec2& uv : mesh.uvs) uv.y = 1.0f - uv.y;
                 }
             }
-            if (props.count("face_normals") && attribute(props.at("face_normals"), "value") == "true") {
-                normals.source = NormalSource::Flat;
+            if (props.count("face_normals")) {
+                std::string value = attribute(props.at("face_normals"), "value");
+                std::transform(value.begin(), value.end(), value.begin(), [](unsigned char c) { return std::tolower(c); });
+                faceNormals = value == "true";
             }
         } else if (type == "rectangle") {
+            requireUnsheared(e, toWorld);
             meshes.push_back(quadMesh({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}));
         } else if (type == "cube") {
             meshes.push_back(cubeMesh());
         } else if (type == "disk") {
+            requireUnsheared(e, toWorld);
             meshes.push_back(diskMesh(kMitsubaSphereSegments));
             note("disk tessellated into " + std::to_string(kMitsubaSphereSegments) + " triangles");
         } else if (type == "sphere") {
+            requireSimilarity(e, toWorld, "a sphere's to_world must scale uniformly (Mitsuba renders a sphere of radius |M x|)");
             const glm::dvec3 centre = props.count("center") ? components(props.at("center"), 0.0) : glm::dvec3(0.0);
             const double radius = props.count("radius") ? number(props.at("radius"), "value") : 1.0;
             if (!(radius > 0.0)) fail(e, "radius must be positive");
@@ -488,8 +539,25 @@ private:
                     "textures on obj and ply shapes are");
         }
         const std::string name = e.node.attribute("id") ? e.node.attribute("id").value() : type + std::to_string(mScene.meshes.size());
+        const bool mirrored = glm::determinant(glm::dmat3(toWorld)) < 0.0;
         for (Mesh& mesh : meshes) {
+            // Normals: the file's; Mitsuba smooths a mesh without them (all edges, no crease
+            // angle) unless face_normals asks for flat ones.
+            NormalOptions normals;
+            const bool hasNormals = !mesh.normals.empty() && !faceNormals;
+            if (faceNormals) {
+                normals.source = NormalSource::Flat;
+            } else if (mesh.normals.empty()) {
+                normals.source = NormalSource::Smooth;
+                normals.creaseDegrees = 180.0f;
+                note("a mesh without normals gets smooth ones across every edge, as in Mitsuba (area-weighted here)");
+            }
             bakeTransform(mesh, glm::mat4(toWorld));
+            if (mirrored && hasNormals) {
+                // A mirroring to_world turns the winding but not the normals, and Mitsuba's front
+                // (the emitting side) follows the normals: turn the winding back.
+                for (glm::uvec3& t : mesh.triangles) std::swap(t.y, t.z);
+            }
             const CleanupStats stats = cleanupMesh(mesh, normals);
             mScene.loadStats.degenerateTriangles += stats.degenerateTriangles;
             mScene.loadStats.duplicateTriangles += stats.duplicateTriangles;
@@ -508,6 +576,9 @@ private:
             const auto props = properties(e, {"position", "intensity", "to_world"});
             Light l;
             glm::dvec3 p(0.0);
+            if (props.count("position") && props.count("to_world")) {
+                fail(e, "give a point light's position or its to_world, not both (Mitsuba refuses both too)");
+            }
             if (props.count("position")) p = components(props.at("position"), 0.0);
             if (props.count("to_world")) p = glm::dvec3(transform(props.at("to_world")) * glm::dvec4(p, 1.0));
             l.position = glm::vec3(p);
@@ -646,6 +717,16 @@ private:
             fail(props.at("fov_axis"), "fov_axis '" + axis + "' not supported (x, y, smaller, larger, diagonal)");
         }
         const glm::dmat4 m = props.count("to_world") ? transform(props.at("to_world")) : glm::dmat4(1.0);
+        const glm::dmat3 r(m);
+        const glm::dmat3 product = r * glm::transpose(r);
+        double off = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) off = std::max(off, std::abs(product[i][j] - (i == j ? 1.0 : 0.0)));
+        }
+        if (off > 1e-5) fail(props.at("to_world"), "a sensor's to_world may not scale (Mitsuba refuses it too)");
+        if (glm::determinant(r) < 0.0) {
+            fail(props.at("to_world"), "a mirrored sensor (to_world with a negative determinant) is not supported");
+        }
         Camera& camera = mScene.camera;
         camera.pose.position = glm::vec3(m * glm::dvec4(0, 0, 0, 1));
         camera.pose.target = glm::vec3(m * glm::dvec4(0, 0, 1, 1));

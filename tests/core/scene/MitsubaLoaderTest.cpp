@@ -193,6 +193,40 @@ TEST(MitsubaLoader, InstancesPlaceTheirGroupsShapes) {
     EXPECT_TRUE(near(b.hi, {11, 1, 2}, 1e-4f));
 }
 
+// Details where a careless reading would silently differ from Mitsuba (a review against its
+// sources): a top-level emitter with an id is still in the scene; a named <ref name="bsdf"> is a
+// reference; a lookat without up takes Mitsuba's coordinate_system (+x when looking down -z); a
+// mirroring to_world keeps the emitting side where the normals say (Mitsuba's flip_normals is a
+// scale of -1 in z: the rectangle then emits toward -z); a mesh without normals gets smooth ones.
+TEST(MitsubaLoader, SilentDifferencesFromMitsubaAreAvoided) {
+    writeTempFile("bent.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\nf 1 2 3\nf 1 3 4\n");
+    const Scene s = loadScene(writeTempFile("details.xml", R"(<scene version="3.0.0">
+        <sensor type="perspective"><float name="fov" value="30"/>
+            <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0"/></transform></sensor>
+        <emitter type="point" id="bulb"><point name="position" value="0, 2, 0"/></emitter>
+        <bsdf type="diffuse" id="dark"><rgb name="reflectance" value="0.1"/></bsdf>
+        <shape type="rectangle"><ref name="bsdf" id="dark"/>
+            <emitter type="area"><rgb name="radiance" value="1"/></emitter>
+            <transform name="to_world"><scale z="-1"/></transform></shape>
+        <shape type="obj"><string name="filename" value="bent.obj"/></shape>
+    </scene>)"));
+    ASSERT_EQ(s.lights.size(), 1u);
+    EXPECT_TRUE(near(s.lights[0].position, {0, 2, 0}));
+    EXPECT_TRUE(near(s.camera.pose.up, {1, 0, 0}));
+    ASSERT_EQ(s.meshes.size(), 2u);
+    EXPECT_TRUE(near(s.materials.at(s.meshes[0].material).albedo, glm::vec3(0.1f)));
+    const Mesh& r = s.meshes[0];
+    for (const glm::uvec3& t : r.triangles) {
+        const glm::vec3 face = glm::cross(r.positions[t.y] - r.positions[t.x], r.positions[t.z] - r.positions[t.x]);
+        EXPECT_LT(face.z, 0.0f) << "the front (emitting) side must face -z";
+    }
+    // The two triangles of the bent quad share the vertices of their common edge with one
+    // averaged normal: not the flat normal of either.
+    const Mesh& bent = s.meshes[1];
+    const glm::vec3 shared = glm::normalize(bent.normals.at(0));
+    EXPECT_GT(std::abs(shared.y), 1e-3f) << "smooth normals expected";
+}
+
 // What is not supported is refused with the file, the line and what is supported; never a
 // silently different scene.
 TEST(MitsubaLoader, UnsupportedElementsAreErrorsWithFileAndLine) {
@@ -209,6 +243,11 @@ TEST(MitsubaLoader, UnsupportedElementsAreErrorsWithFileAndLine) {
         {"<shape type=\"rectangle\"><transform name=\"to_world\"><skew/></transform></shape>",
          "transform operation not supported"},
         {"<shape type=\"sphere\"><float name=\"radius\" value=\"$missing\"/></shape>", "'$missing' has no <default>"},
+        {"<shape type=\"sphere\"><transform name=\"to_world\"><scale x=\"2\"/></transform></shape>",
+         "a sphere's to_world must scale uniformly"},
+        {"<emitter type=\"point\"><point name=\"position\" value=\"0, 0, 0\"/>"
+         "<transform name=\"to_world\"><translate x=\"1\"/></transform></emitter>",
+         "not both"},
     };
     for (const auto& [body, expected] : cases) {
         e = refusal(body);
@@ -216,6 +255,12 @@ TEST(MitsubaLoader, UnsupportedElementsAreErrorsWithFileAndLine) {
     }
     e = errorOf([] { loadScene(writeTempFile("broken.xml", "<scene>\n<shape type=\"cube\">\n</scene>\n")); });
     EXPECT_NE(e.find("broken.xml:"), std::string::npos) << e;
+    e = errorOf([] {
+        loadScene(writeTempFile("scaled.xml", "<scene><sensor type=\"perspective\"><float name=\"fov\" value=\"30\"/>"
+                                              "<transform name=\"to_world\"><scale value=\"2\"/></transform></sensor>"
+                                              "<shape type=\"cube\"/></scene>"));
+    });
+    EXPECT_NE(e.find("may not scale"), std::string::npos) << e;
     e = errorOf([] { loadScene(writeTempFile("nocamera.xml", "<scene><shape type=\"cube\"/></scene>")); });
     EXPECT_NE(e.find("no <sensor"), std::string::npos) << e;
 }
