@@ -17,7 +17,9 @@ struct MeshFile {
     std::vector<glm::vec3> materialEmission; // MTL Ke per material
 };
 
-MeshFile loadObj(const std::string& path);
+// `readMaterials` false: mtllib and usemtl are skipped (Mitsuba's OBJ shapes take their bsdf from
+// the scene, and a missing or malformed MTL must not refuse them); one mesh, one default material.
+MeshFile loadObj(const std::string& path, bool readMaterials = true);
 MeshFile loadPly(const std::string& path);
 // By extension (.obj or .ply, any case).
 MeshFile loadMeshFile(const std::string& path);

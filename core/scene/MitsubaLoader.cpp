@@ -499,7 +499,7 @@ private:
         if (type == "obj" || type == "ply") {
             if (!props.count("filename")) fail(e, "missing <string name=\"filename\">");
             const std::string file = resolve(props.at("filename"), attribute(props.at("filename"), "value"));
-            MeshFile mf = type == "obj" ? loadObj(file) : loadPly(file);
+            MeshFile mf = type == "obj" ? loadObj(file, false) : loadPly(file); // Mitsuba ignores MTL files
             meshes = std::move(mf.meshes);
             if (type == "ply") {
                 // Mitsuba reads a PLY's v as it is (image row 0 at v = 0), an OBJ's flipped;

@@ -38,7 +38,7 @@ long long resolveIndex(const TextLines& in, std::string_view token, std::size_t 
 
 } // namespace
 
-MeshFile loadObj(const std::string& path) {
+MeshFile loadObj(const std::string& path, bool readMaterials) {
     TextLines in(path);
     std::vector<glm::vec3> v, vn;
     std::vector<glm::vec2> vt;
@@ -131,6 +131,8 @@ MeshFile loadObj(const std::string& path) {
                 b.mesh.triangles.emplace_back(ids[0], ids[1], ids[2]);
             }
             ++faces;
+        } else if (!readMaterials && (key == "usemtl" || key == "mtllib")) {
+            // The scene gives the material.
         } else if (key == "usemtl") {
             currentMaterial = t.size() > 1 ? std::string(t[1]) : "";
         } else if (key == "mtllib") {

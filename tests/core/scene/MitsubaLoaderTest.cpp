@@ -199,7 +199,10 @@ TEST(MitsubaLoader, InstancesPlaceTheirGroupsShapes) {
 // mirroring to_world keeps the emitting side where the normals say (Mitsuba's flip_normals is a
 // scale of -1 in z: the rectangle then emits toward -z); a mesh without normals gets smooth ones.
 TEST(MitsubaLoader, SilentDifferencesFromMitsubaAreAvoided) {
-    writeTempFile("bent.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\nf 1 2 3\nf 1 3 4\n");
+    // The OBJ names an MTL library our MTL reader refuses (Kd above 1): Mitsuba ignores MTL files,
+    // so must the importer.
+    writeTempFile("bent.mtl", "newmtl paint\nKd 1.5 0 0\n");
+    writeTempFile("bent.obj", "mtllib bent.mtl\nusemtl paint\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\nf 1 2 3\nf 1 3 4\n");
     const Scene s = loadScene(writeTempFile("details.xml", R"(<scene version="3.0.0">
         <sensor type="perspective"><float name="fov" value="30"/>
             <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0"/></transform></sensor>
