@@ -5,23 +5,19 @@
 #include "scene/MeshCleanup.h"
 #include "scene/MeshFile.h"
 #include "scene/MeshTransform.h"
+#include "scene/MitsubaXml.h"
 #include "scene/ShapeMeshes.h"
 
 #include <glm/glm.hpp>
-#include <glm/gtc/matrix_transform.hpp>
-#include <pugixml.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 
 namespace bl {
 
@@ -30,187 +26,34 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// Includes nested deeper than this are a cycle.
-constexpr int kMaxIncludeDepth = 16;
 // Mitsuba's defaults: an hdrfilm of 768 x 576, a diffuse bsdf of reflectance 0.5.
 constexpr int kFilmWidth = 768, kFilmHeight = 576;
 constexpr float kDefaultReflectance = 0.5f;
 
-// A parsed file, kept alive while its nodes are in use; its text gives line numbers.
-struct Document {
-    std::string path;
-    std::string text;
-    pugi::xml_document xml;
-};
-
-// An element and the document it came from.
-struct Element {
-    pugi::xml_node node;
-    const Document* doc = nullptr;
-};
+using mitsuba::Element;
+using mitsuba::XmlReader;
 
 class Importer {
 public:
-    explicit Importer(const std::string& path) : mRoot(fs::path(path).parent_path()) { mScene.path = path; }
+    explicit Importer(const std::string& path) : mXml(path) { mScene.path = path; }
 
     Scene run(const std::string& path) {
-        collect(path, 0, nullptr);
-        for (const Element& e : mTop) topLevel(e);
+        for (const Element& e : mXml.top()) topLevel(e);
         if (mScene.meshes.empty()) {
             throw Error(path + ": the scene has no shapes");
         }
         if (!mCameraSet) {
             throw Error(path + ": no <sensor type=\"perspective\">: bundlelab needs the camera from the file");
         }
-        mScene.importNotes = mNotes;
+        mScene.importNotes = mXml.notes();
         return std::move(mScene);
     }
 
 private:
-    // --- Reading the files --------------------------------------------------------------------
-
-    void collect(const std::string& path, int depth, const Element* from) {
-        if (depth > kMaxIncludeDepth) {
-            fail(*from, "includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " (a cycle?)");
-        }
-        Document& doc = mDocs.emplace_back();
-        doc.path = path;
-        std::ifstream in(path, std::ios::binary);
-        if (!in) {
-            if (from) fail(*from, "cannot open '" + path + "'");
-            throw Error(path + ": file not found");
-        }
-        std::stringstream buffer;
-        buffer << in.rdbuf();
-        doc.text = buffer.str();
-        const pugi::xml_parse_result parsed = doc.xml.load_buffer(doc.text.data(), doc.text.size());
-        if (!parsed) {
-            throw Error(path + ":" + std::to_string(lineOf(doc, std::size_t(parsed.offset))) + ": XML: " +
-                        parsed.description());
-        }
-        const pugi::xml_node root = doc.xml.child("scene");
-        if (!root) {
-            throw Error(path + ": no <scene> element");
-        }
-        for (const pugi::xml_node& node : root.children()) {
-            if (node.type() != pugi::node_element) continue;
-            const Element e{node, &doc};
-            const std::string tag = node.name();
-            if (tag == "include") {
-                collect(resolveInclude(e, attribute(e, "filename")), depth + 1, &e);
-            } else if (tag == "default") {
-                // The first definition wins (Mitsuba: a -D on the command line, then the file's).
-                mDefaults.emplace(attribute(e, "name"), node.attribute("value").value());
-            } else {
-                mTop.push_back(e);
-                if (node.attribute("id")) {
-                    const std::string id = node.attribute("id").value();
-                    if (!mIds.emplace(id, e).second) fail(e, "duplicate id '" + id + "'");
-                }
-            }
-        }
-    }
-
-    static std::size_t lineOf(const Document& doc, std::size_t offset) {
-        offset = std::min(offset, doc.text.size());
-        return 1 + std::size_t(std::count(doc.text.begin(), doc.text.begin() + std::ptrdiff_t(offset), '\n'));
-    }
-
-    [[noreturn]] static void fail(const Element& e, const std::string& message) {
-        throw Error(e.doc->path + ":" + std::to_string(lineOf(*e.doc, std::size_t(e.node.offset_debug()))) + ": <" +
-                    e.node.name() + (e.node.attribute("type") ? std::string(" type=\"") + e.node.attribute("type").value() + "\"" : "") +
-                    ">: " + message);
-    }
-
-    // An attribute with $name parameters replaced; required.
-    std::string attribute(const Element& e, const char* name) const {
-        const pugi::xml_attribute a = e.node.attribute(name);
-        if (!a) fail(e, std::string("missing attribute '") + name + "'");
-        return substitute(e, a.value());
-    }
-
-    std::string substitute(const Element& e, std::string value) const {
-        for (std::size_t at = value.find('$'); at != std::string::npos; at = value.find('$', at)) {
-            std::size_t end = at + 1;
-            while (end < value.size() && (std::isalnum(static_cast<unsigned char>(value[end])) || value[end] == '_')) ++end;
-            const std::string name = value.substr(at + 1, end - at - 1);
-            const auto it = mDefaults.find(name);
-            if (it == mDefaults.end()) fail(e, "parameter '$" + name + "' has no <default>");
-            value.replace(at, end - at, it->second);
-            at += it->second.size();
-        }
-        return value;
-    }
-
-    // A file named in the scene: relative to the main file's folder (Mitsuba's file resolver),
-    // else to the including file's.
-    std::string resolve(const Element& e, const std::string& name) const {
-        const fs::path p(name);
-        if (p.is_absolute()) return name;
-        if (fs::exists(mRoot / p)) return (mRoot / p).string();
-        const fs::path local = fs::path(e.doc->path).parent_path() / p;
-        if (fs::exists(local)) return local.string();
-        fail(e, "file '" + name + "' not found (looked in " + mRoot.string() + " and " +
-                    fs::path(e.doc->path).parent_path().string() + ")");
-    }
-
-    // An included file: relative to the including file's folder first (Mitsuba's parser), then
-    // the main file's.
-    std::string resolveInclude(const Element& e, const std::string& name) const {
-        const fs::path local = fs::path(e.doc->path).parent_path() / name;
-        if (!fs::path(name).is_absolute() && fs::exists(local)) return local.string();
-        return resolve(e, name);
-    }
-
-    // --- Values ------------------------------------------------------------------------------
-
-    std::vector<double> numbers(const Element& e, const std::string& text) const {
-        std::string s = text;
-        std::replace(s.begin(), s.end(), ',', ' ');
-        std::istringstream in(s);
-        std::vector<double> out;
-        std::string word;
-        while (in >> word) {
-            char* end = nullptr;
-            const double v = std::strtod(word.c_str(), &end);
-            if (end != word.c_str() + word.size() || !std::isfinite(v)) fail(e, "'" + text + "' is not a list of finite numbers");
-            out.push_back(v);
-        }
-        return out;
-    }
-
-    double number(const Element& e, const char* name) const {
-        const std::vector<double> v = numbers(e, attribute(e, name));
-        if (v.size() != 1) fail(e, std::string("attribute '") + name + "' must be one number");
-        return v[0];
-    }
-
-    glm::dvec3 triple(const Element& e, const char* name) const {
-        const std::vector<double> v = numbers(e, attribute(e, name));
-        if (v.size() != 3) fail(e, std::string("attribute '") + name + "' must be three numbers");
-        return {v[0], v[1], v[2]};
-    }
-
-    // x, y, z attributes (each defaulting to `fallback`) or one `value` of three numbers.
-    glm::dvec3 components(const Element& e, double fallback) const {
-        if (e.node.attribute("value")) {
-            const std::vector<double> v = numbers(e, attribute(e, "value"));
-            if (v.size() == 1) return glm::dvec3(v[0]);
-            if (v.size() != 3) fail(e, "'value' must be one or three numbers");
-            return {v[0], v[1], v[2]};
-        }
-        glm::dvec3 out(fallback);
-        const char* axes[] = {"x", "y", "z"};
-        for (int i = 0; i < 3; ++i) {
-            if (e.node.attribute(axes[i])) out[i] = number(e, axes[i]);
-        }
-        return out;
-    }
-
     // Mitsuba refuses a rectangle or disk whose to_world shears it.
     static void requireUnsheared(const Element& e, const glm::dmat4& m) {
         const glm::dvec3 x(m[0]), y(m[1]);
-        if (std::abs(glm::dot(x, y)) > 1e-6 * glm::length(x) * glm::length(y)) fail(e, "to_world shears this shape");
+        if (std::abs(glm::dot(x, y)) > 1e-6 * glm::length(x) * glm::length(y)) XmlReader::fail(e, "to_world shears this shape");
     }
 
     // A to_world that scales all axes alike (a rotation, uniform scale and translation).
@@ -220,99 +63,8 @@ private:
         if (std::abs(glm::dot(x, y)) > tolerance || std::abs(glm::dot(y, z)) > tolerance ||
             std::abs(glm::dot(x, z)) > tolerance || std::abs(glm::length(y) - l) > 1e-6 * l ||
             std::abs(glm::length(z) - l) > 1e-6 * l) {
-            fail(e, message);
+            XmlReader::fail(e, message);
         }
-    }
-
-    // Mitsuba's up for a lookat without one: the first vector of coordinate_system(n) (Duff et
-    // al.'s frame), (1, 0, 0) when looking down -z.
-    static glm::dvec3 perpendicular(const glm::dvec3& n) {
-        const double sign = std::copysign(1.0, n.z), a = -1.0 / (sign + n.z), b = n.x * n.y * a;
-        return {n.x * n.x * a * sign + 1.0, b * sign, -n.x * sign};
-    }
-
-    // The named property children of an element (<float name="fov" .../> ...), checked against
-    // what this element supports.
-    std::map<std::string, Element> properties(const Element& e, const std::set<std::string>& supported,
-                                              const std::set<std::string>& ignored = {}) {
-        std::map<std::string, Element> out;
-        for (const pugi::xml_node& c : e.node.children()) {
-            if (c.type() != pugi::node_element || !c.attribute("name") || isObject(c)) continue;
-            const Element child{c, e.doc};
-            const std::string name = c.attribute("name").value();
-            if (ignored.count(name)) {
-                note(std::string("<") + e.node.name() + "> '" + name + "' ignored");
-                continue;
-            }
-            if (!supported.count(name)) {
-                std::string list;
-                for (const std::string& s : supported) list += (list.empty() ? "" : ", ") + s;
-                fail(child, "property '" + name + "' is not supported here (supported: " + list + ")");
-            }
-            out.emplace(name, child);
-        }
-        return out;
-    }
-
-    // A nested object or a reference (<bsdf name="..."> and <ref name="bsdf" .../> are allowed):
-    // not a property, even with a name. A texture with a name is a property's value.
-    static bool isObject(const pugi::xml_node& c) {
-        const std::string tag = c.name();
-        return tag == "ref" || tag == "bsdf" || tag == "emitter" || tag == "shape";
-    }
-
-    glm::vec3 color(const Element& e) const {
-        const std::string tag = e.node.name();
-        if (tag != "rgb" && tag != "float") {
-            fail(e, "only <rgb> or <float> values are supported (no spectra or textures yet)");
-        }
-        const std::vector<double> v = numbers(e, attribute(e, "value"));
-        if (v.size() == 1) return glm::vec3(float(v[0]));
-        if (v.size() != 3 || tag != "rgb") fail(e, "an <rgb> value has three numbers, a <float> one");
-        return {float(v[0]), float(v[1]), float(v[2])};
-    }
-
-    glm::dmat4 transform(const Element& e) const {
-        glm::dmat4 m(1.0);
-        for (const pugi::xml_node& c : e.node.children()) {
-            if (c.type() != pugi::node_element) continue;
-            const Element op{c, e.doc};
-            const std::string tag = c.name();
-            glm::dmat4 t(1.0);
-            if (tag == "translate") {
-                t = glm::translate(glm::dmat4(1.0), components(op, 0.0));
-            } else if (tag == "scale") {
-                t = glm::scale(glm::dmat4(1.0), components(op, 1.0));
-            } else if (tag == "rotate") {
-                const glm::dvec3 axis = components(op, 0.0);
-                if (!(glm::length(axis) > 0.0)) fail(op, "rotation axis is zero");
-                t = glm::rotate(glm::dmat4(1.0), number(op, "angle") * kPi / 180.0, glm::normalize(axis));
-            } else if (tag == "matrix") {
-                const std::vector<double> v = numbers(op, attribute(op, "value"));
-                if (v.size() != 16 && v.size() != 9) fail(op, "a matrix has 16 (or 9) numbers, row by row");
-                const int n = v.size() == 16 ? 4 : 3;
-                for (int r = 0; r < n; ++r) {
-                    for (int col = 0; col < n; ++col) t[col][r] = v[std::size_t(r * n + col)];
-                }
-            } else if (tag == "lookat") {
-                const glm::dvec3 origin = triple(op, "origin"), target = triple(op, "target");
-                const glm::dvec3 dir = glm::normalize(target - origin);
-                const glm::dvec3 up = op.node.attribute("up") ? triple(op, "up") : perpendicular(dir);
-                glm::dvec3 left = glm::cross(up, dir);
-                if (!(glm::length(left) > 0.0)) fail(op, "'up' is parallel to the view direction");
-                left = glm::normalize(left);
-                const glm::dvec3 newUp = glm::cross(dir, left);
-                t = glm::dmat4(glm::dvec4(left, 0.0), glm::dvec4(newUp, 0.0), glm::dvec4(dir, 0.0), glm::dvec4(origin, 1.0));
-            } else {
-                fail(op, "transform operation not supported (supported: translate, rotate, scale, matrix, lookat)");
-            }
-            m = t * m;
-        }
-        return m;
-    }
-
-    void note(const std::string& text) {
-        if (std::find(mNotes.begin(), mNotes.end(), text) == mNotes.end()) mNotes.push_back(text);
     }
 
     // --- Scene objects -------------------------------------------------------------------------
@@ -334,21 +86,12 @@ private:
         } else if (tag == "bsdf" || tag == "texture") {
             // Used where a shape or a bsdf refers to it.
         } else if (tag == "integrator" || tag == "sampler" || tag == "rfilter" || tag == "film") {
-            note("<" + tag + " type=\"" + e.node.attribute("type").value() +
+            mXml.note("<" + tag + " type=\"" + e.node.attribute("type").value() +
                  "\"> ignored: how to render is the mode's choice, not the scene's");
         } else {
-            fail(e, "element not supported (supported at the top: shape, bsdf, emitter, sensor, include, default; "
+            XmlReader::fail(e, "element not supported (supported at the top: shape, bsdf, emitter, sensor, include, default; "
                     "integrator, sampler ignored)");
         }
-    }
-
-    // The element a <ref id="..."/> names, which must be a `tag`.
-    Element referenced(const Element& ref, const std::string& tag) const {
-        const std::string id = attribute(ref, "id");
-        const auto it = mIds.find(id);
-        if (it == mIds.end()) fail(ref, "no element with id '" + id + "'");
-        if (tag != it->second.node.name()) fail(ref, "id '" + id + "' is a <" + it->second.node.name() + ">, not a <" + tag + ">");
-        return it->second;
     }
 
     std::uint32_t material(const Element& bsdf) {
@@ -360,21 +103,21 @@ private:
         if (std::string(bsdf.node.attribute("type").value()) == "twosided") {
             std::vector<Element> nested;
             for (const pugi::xml_node& c : bsdf.node.children("bsdf")) nested.push_back({c, bsdf.doc});
-            for (const pugi::xml_node& c : bsdf.node.children("ref")) nested.push_back(referenced({c, bsdf.doc}, "bsdf"));
-            if (nested.size() != 1) fail(bsdf, "a twosided bsdf holds exactly one bsdf (two different sides are not supported)");
+            for (const pugi::xml_node& c : bsdf.node.children("ref")) nested.push_back(mXml.referenced({c, bsdf.doc}, "bsdf"));
+            if (nested.size() != 1) XmlReader::fail(bsdf, "a twosided bsdf holds exactly one bsdf (two different sides are not supported)");
             inner = nested.front();
         } else if (std::string(bsdf.node.attribute("type").value()) == "diffuse") {
-            note("bsdf 'diffuse' (one-sided in Mitsuba) read as bundlelab's Lambertian, which reflects on both sides");
+            mXml.note("bsdf 'diffuse' (one-sided in Mitsuba) read as bundlelab's Lambertian, which reflects on both sides");
         }
         const std::string type = inner.node.attribute("type").value();
         if (type != "diffuse") {
-            fail(inner, "bsdf type not supported (supported: diffuse, twosided around a diffuse); glossy bsdfs are "
+            XmlReader::fail(inner, "bsdf type not supported (supported: diffuse, twosided around a diffuse); glossy bsdfs are "
                         "not mapped to bundlelab's Phong / Ashikhmin-Shirley yet");
         }
-        auto props = properties(inner, {"reflectance"});
+        auto props = mXml.properties(inner, {"reflectance"});
         for (const pugi::xml_node& c : inner.node.children("ref")) {
             const Element ref{c, inner.doc};
-            if (std::string(c.attribute("name").value()) != "reflectance") fail(ref, "only the reflectance may be a reference here");
+            if (std::string(c.attribute("name").value()) != "reflectance") XmlReader::fail(ref, "only the reflectance may be a reference here");
             props.emplace("reflectance", ref);
         }
         m.albedo = glm::vec3(kDefaultReflectance);
@@ -383,13 +126,13 @@ private:
             const std::string tag = r.node.name();
             if (tag == "texture" || tag == "ref") {
                 m.albedo = glm::vec3(1.0f); // the texture is the reflectance
-                m.albedoTexture = texture(tag == "ref" ? referenced(r, "texture") : r);
+                m.albedoTexture = texture(tag == "ref" ? mXml.referenced(r, "texture") : r);
             } else {
-                m.albedo = color(r);
+                m.albedo = mXml.color(r);
             }
         }
         for (int c = 0; c < 3; ++c) {
-            if (!(m.albedo[c] >= 0.0f && m.albedo[c] <= 1.0f)) fail(inner, "reflectance outside [0, 1]");
+            if (!(m.albedo[c] >= 0.0f && m.albedo[c] <= 1.0f)) XmlReader::fail(inner, "reflectance outside [0, 1]");
         }
         const auto index = static_cast<std::uint32_t>(mScene.materials.size());
         mScene.materials.push_back(m);
@@ -400,16 +143,16 @@ private:
     // A bitmap texture (8-bit, sRGB-encoded as Mitsuba reads one unless `raw`; bilinear, repeat),
     // index into the scene's textures; one per file.
     int texture(const Element& t) {
-        if (std::string(t.node.attribute("type").value()) != "bitmap") fail(t, "texture type not supported (supported: bitmap)");
-        const auto props = properties(t, {"filename", "filter_type", "wrap_mode", "raw"});
-        if (!props.count("filename")) fail(t, "missing <string name=\"filename\">");
+        if (std::string(t.node.attribute("type").value()) != "bitmap") XmlReader::fail(t, "texture type not supported (supported: bitmap)");
+        const auto props = mXml.properties(t, {"filename", "filter_type", "wrap_mode", "raw"});
+        if (!props.count("filename")) XmlReader::fail(t, "missing <string name=\"filename\">");
         const auto is = [&](const char* name, const char* value) {
-            return !props.count(name) || attribute(props.at(name), "value") == value;
+            return !props.count(name) || mXml.attribute(props.at(name), "value") == value;
         };
         if (!is("filter_type", "bilinear") || !is("wrap_mode", "repeat") || !is("raw", "false")) {
-            fail(t, "only bilinear, repeating, sRGB-decoded bitmaps are supported (filter_type, wrap_mode, raw)");
+            XmlReader::fail(t, "only bilinear, repeating, sRGB-decoded bitmaps are supported (filter_type, wrap_mode, raw)");
         }
-        const std::string path = resolve(props.at("filename"), attribute(props.at("filename"), "value"));
+        const std::string path = mXml.resolve(props.at("filename"), mXml.attribute(props.at("filename"), "value"));
         if (const auto it = mTextureOf.find(path); it != mTextureOf.end()) return it->second;
         const int index = static_cast<int>(mScene.textures.size());
         mScene.textures.push_back({path, readRgba8(path)});
@@ -424,19 +167,19 @@ private:
             m.albedo = glm::vec3(kDefaultReflectance);
             mDefaultMaterial = static_cast<std::uint32_t>(mScene.materials.size());
             mScene.materials.push_back(m);
-            note("shapes without a bsdf get Mitsuba's default: diffuse, reflectance 0.5");
+            mXml.note("shapes without a bsdf get Mitsuba's default: diffuse, reflectance 0.5");
         }
         return *mDefaultMaterial;
     }
 
     glm::vec3 areaRadiance(const Element& emitter) {
         if (std::string(emitter.node.attribute("type").value()) != "area") {
-            fail(emitter, "a shape's emitter must be of type 'area'");
+            XmlReader::fail(emitter, "a shape's emitter must be of type 'area'");
         }
-        const auto props = properties(emitter, {"radiance"});
-        const glm::vec3 l = props.count("radiance") ? color(props.at("radiance")) : glm::vec3(1.0f);
+        const auto props = mXml.properties(emitter, {"radiance"});
+        const glm::vec3 l = props.count("radiance") ? mXml.color(props.at("radiance")) : glm::vec3(1.0f);
         for (int c = 0; c < 3; ++c) {
-            if (!(l[c] >= 0.0f)) fail(emitter, "negative radiance");
+            if (!(l[c] >= 0.0f)) XmlReader::fail(emitter, "negative radiance");
         }
         return l;
     }
@@ -444,22 +187,22 @@ private:
     // <shape type="instance"> of a <shape type="shapegroup">: each shape of the group placed by
     // the instance's to_world after its own (copied into the scene: bundlelab has no instancing).
     void instance(const Element& e) {
-        const auto props = properties(e, {"to_world"});
-        const glm::dmat4 toWorld = props.count("to_world") ? transform(props.at("to_world")) : glm::dmat4(1.0);
+        const auto props = mXml.properties(e, {"to_world"});
+        const glm::dmat4 toWorld = props.count("to_world") ? mXml.transform(props.at("to_world")) : glm::dmat4(1.0);
         std::vector<Element> groups;
-        for (const pugi::xml_node& c : e.node.children("ref")) groups.push_back(referenced({c, e.doc}, "shape"));
+        for (const pugi::xml_node& c : e.node.children("ref")) groups.push_back(mXml.referenced({c, e.doc}, "shape"));
         if (groups.size() != 1 || std::string(groups[0].node.attribute("type").value()) != "shapegroup") {
-            fail(e, "an instance refers to exactly one shapegroup (<ref id=\"...\"/>)");
+            XmlReader::fail(e, "an instance refers to exactly one shapegroup (<ref id=\"...\"/>)");
         }
         for (const pugi::xml_node& c : groups[0].node.children()) {
             if (c.type() != pugi::node_element) continue;
             const Element child{c, groups[0].doc};
-            if (std::string(c.name()) != "shape") fail(child, "a shapegroup holds shapes only");
+            if (std::string(c.name()) != "shape") XmlReader::fail(child, "a shapegroup holds shapes only");
             const std::string type = c.attribute("type").value();
-            if (type == "instance" || type == "shapegroup") fail(child, "nested shape groups are not supported");
+            if (type == "instance" || type == "shapegroup") XmlReader::fail(child, "nested shape groups are not supported");
             shape(child, toWorld);
         }
-        note("shapegroup instances copied into the scene");
+        mXml.note("shapegroup instances copied into the scene");
     }
 
     // A shape's meshes in the scene, placed by `outer` after the shape's own to_world.
@@ -468,37 +211,31 @@ private:
         std::set<std::string> supported{"to_world"};
         if (type == "obj" || type == "ply") supported.insert({"filename", "face_normals"});
         if (type == "sphere") supported.insert({"center", "radius"});
-        const auto props = properties(e, supported);
+        const auto props = mXml.properties(e, supported);
         std::optional<std::uint32_t> materialIndex;
         std::optional<glm::vec3> emission;
         for (const pugi::xml_node& c : e.node.children()) {
-            if (c.type() != pugi::node_element || (c.attribute("name") && !isObject(c))) continue;
+            if (c.type() != pugi::node_element || (c.attribute("name") && !XmlReader::isObject(c))) continue;
             const Element child{c, e.doc};
             const std::string tag = c.name();
-            Element target = child;
-            if (tag == "ref") {
-                const std::string id = attribute(child, "id");
-                const auto it = mIds.find(id);
-                if (it == mIds.end()) fail(child, "no element with id '" + id + "'");
-                target = it->second;
-            }
+            const Element target = tag == "ref" ? mXml.referenced(child) : child;
             const std::string kind = target.node.name();
             if (kind == "bsdf") {
-                if (materialIndex) fail(child, "a shape has one bsdf");
+                if (materialIndex) XmlReader::fail(child, "a shape has one bsdf");
                 materialIndex = material(target);
             } else if (kind == "emitter") {
-                if (emission) fail(child, "a shape has one emitter");
+                if (emission) XmlReader::fail(child, "a shape has one emitter");
                 emission = areaRadiance(target);
             } else {
-                fail(child, "not supported inside a shape (supported: bsdf, emitter, ref, transform, properties)");
+                XmlReader::fail(child, "not supported inside a shape (supported: bsdf, emitter, ref, transform, properties)");
             }
         }
-        const glm::dmat4 toWorld = outer * (props.count("to_world") ? transform(props.at("to_world")) : glm::dmat4(1.0));
+        const glm::dmat4 toWorld = outer * (props.count("to_world") ? mXml.transform(props.at("to_world")) : glm::dmat4(1.0));
         std::vector<Mesh> meshes;
         bool faceNormals = false;
         if (type == "obj" || type == "ply") {
-            if (!props.count("filename")) fail(e, "missing <string name=\"filename\">");
-            const std::string file = resolve(props.at("filename"), attribute(props.at("filename"), "value"));
+            if (!props.count("filename")) XmlReader::fail(e, "missing <string name=\"filename\">");
+            const std::string file = mXml.resolve(props.at("filename"), mXml.attribute(props.at("filename"), "value"));
             MeshFile mf = type == "obj" ? loadObj(file, false) : loadPly(file); // Mitsuba ignores MTL files
             meshes = std::move(mf.meshes);
             if (type == "ply") {
@@ -509,7 +246,7 @@ private:
                 }
             }
             if (props.count("face_normals")) {
-                std::string value = attribute(props.at("face_normals"), "value");
+                std::string value = mXml.attribute(props.at("face_normals"), "value");
                 std::transform(value.begin(), value.end(), value.begin(), [](unsigned char c) { return std::tolower(c); });
                 faceNormals = value == "true";
             }
@@ -521,21 +258,21 @@ private:
         } else if (type == "disk") {
             requireUnsheared(e, toWorld);
             meshes.push_back(diskMesh(kMitsubaSphereSegments));
-            note("disk tessellated into " + std::to_string(kMitsubaSphereSegments) + " triangles");
+            mXml.note("disk tessellated into " + std::to_string(kMitsubaSphereSegments) + " triangles");
         } else if (type == "sphere") {
             requireSimilarity(e, toWorld, "a sphere's to_world must scale uniformly (Mitsuba renders a sphere of radius |M x|)");
-            const glm::dvec3 centre = props.count("center") ? components(props.at("center"), 0.0) : glm::dvec3(0.0);
-            const double radius = props.count("radius") ? number(props.at("radius"), "value") : 1.0;
-            if (!(radius > 0.0)) fail(e, "radius must be positive");
+            const glm::dvec3 centre = props.count("center") ? mXml.components(props.at("center"), 0.0) : glm::dvec3(0.0);
+            const double radius = props.count("radius") ? mXml.number(props.at("radius"), "value") : 1.0;
+            if (!(radius > 0.0)) XmlReader::fail(e, "radius must be positive");
             meshes.push_back(sphereMesh(centre, radius, kMitsubaSphereSegments));
-            note("sphere tessellated into " + std::to_string(kMitsubaSphereSegments) + " x " +
+            mXml.note("sphere tessellated into " + std::to_string(kMitsubaSphereSegments) + " x " +
                  std::to_string(kMitsubaSphereSegments / 2) + " quads with smooth normals (its area is 0.3% short of the sphere's)");
         } else {
-            fail(e, "shape type not supported (supported: obj, ply, rectangle, cube, disk, sphere, shapegroup, instance)");
+            XmlReader::fail(e, "shape type not supported (supported: obj, ply, rectangle, cube, disk, sphere, shapegroup, instance)");
         }
         const std::uint32_t materialUsed = materialIndex ? *materialIndex : defaultMaterial();
         if (mScene.materials[materialUsed].albedoTexture >= 0 && type != "obj" && type != "ply") {
-            fail(e, "a textured bsdf on an analytic shape is not supported (its texture coordinates are not mapped); "
+            XmlReader::fail(e, "a textured bsdf on an analytic shape is not supported (its texture coordinates are not mapped); "
                     "textures on obj and ply shapes are");
         }
         const std::string name = e.node.attribute("id") ? e.node.attribute("id").value() : type + std::to_string(mScene.meshes.size());
@@ -550,7 +287,7 @@ private:
             } else if (mesh.normals.empty()) {
                 normals.source = NormalSource::Smooth;
                 normals.creaseDegrees = 180.0f;
-                note("a mesh without normals gets smooth ones across every edge, as in Mitsuba (area-weighted here)");
+                mXml.note("a mesh without normals gets smooth ones across every edge, as in Mitsuba (area-weighted here)");
             }
             bakeTransform(mesh, glm::mat4(toWorld));
             if (mirrored && hasNormals) {
@@ -573,30 +310,30 @@ private:
     void emitter(const Element& e) {
         const std::string type = e.node.attribute("type").value();
         if (type == "point") {
-            const auto props = properties(e, {"position", "intensity", "to_world"});
+            const auto props = mXml.properties(e, {"position", "intensity", "to_world"});
             Light l;
             glm::dvec3 p(0.0);
             if (props.count("position") && props.count("to_world")) {
-                fail(e, "give a point light's position or its to_world, not both (Mitsuba refuses both too)");
+                XmlReader::fail(e, "give a point light's position or its to_world, not both (Mitsuba refuses both too)");
             }
-            if (props.count("position")) p = components(props.at("position"), 0.0);
-            if (props.count("to_world")) p = glm::dvec3(transform(props.at("to_world")) * glm::dvec4(p, 1.0));
+            if (props.count("position")) p = mXml.components(props.at("position"), 0.0);
+            if (props.count("to_world")) p = glm::dvec3(mXml.transform(props.at("to_world")) * glm::dvec4(p, 1.0));
             l.position = glm::vec3(p);
-            l.intensity = props.count("intensity") ? color(props.at("intensity")) : glm::vec3(1.0f);
+            l.intensity = props.count("intensity") ? mXml.color(props.at("intensity")) : glm::vec3(1.0f);
             mScene.lights.push_back(l);
         } else if (type == "spot") {
             mScene.lights.push_back(spot(e));
         } else if (type == "envmap") {
             environmentMap(e);
         } else if (type == "constant") {
-            const auto props = properties(e, {"radiance"});
-            if (mScene.environment.present) fail(e, "a second environment emitter");
+            const auto props = mXml.properties(e, {"radiance"});
+            if (mScene.environment.present) XmlReader::fail(e, "a second environment emitter");
             mScene.environment.present = true;
-            mScene.environment.radiance = props.count("radiance") ? color(props.at("radiance")) : glm::vec3(1.0f);
+            mScene.environment.radiance = props.count("radiance") ? mXml.color(props.at("radiance")) : glm::vec3(1.0f);
         } else if (type == "area") {
-            fail(e, "an area emitter belongs inside a shape (or has an id a shape refers to)");
+            XmlReader::fail(e, "an area emitter belongs inside a shape (or has an id a shape refers to)");
         } else {
-            fail(e, "emitter type not supported (supported: area, point, spot, constant, envmap)");
+            XmlReader::fail(e, "emitter type not supported (supported: area, point, spot, constant, envmap)");
         }
     }
 
@@ -605,19 +342,19 @@ private:
     // cosine from the cone's inner to its outer angle) with the same angles; the note gives what
     // that changes: the emitted power and the largest difference of the profiles.
     Light spot(const Element& e) {
-        const auto props = properties(e, {"intensity", "cutoff_angle", "beam_width", "to_world"});
-        const double cutoff = props.count("cutoff_angle") ? number(props.at("cutoff_angle"), "value") : 20.0;
-        const double beam = props.count("beam_width") ? number(props.at("beam_width"), "value") : 0.75 * cutoff;
-        if (!(cutoff > 0.0 && cutoff <= 90.0)) fail(e, "cutoff_angle outside (0, 90] degrees");
-        if (!(beam >= 0.0 && beam <= cutoff)) fail(e, "beam_width outside [0, cutoff_angle]");
-        const glm::dmat4 m = props.count("to_world") ? transform(props.at("to_world")) : glm::dmat4(1.0);
+        const auto props = mXml.properties(e, {"intensity", "cutoff_angle", "beam_width", "to_world"});
+        const double cutoff = props.count("cutoff_angle") ? mXml.number(props.at("cutoff_angle"), "value") : 20.0;
+        const double beam = props.count("beam_width") ? mXml.number(props.at("beam_width"), "value") : 0.75 * cutoff;
+        if (!(cutoff > 0.0 && cutoff <= 90.0)) XmlReader::fail(e, "cutoff_angle outside (0, 90] degrees");
+        if (!(beam >= 0.0 && beam <= cutoff)) XmlReader::fail(e, "beam_width outside [0, cutoff_angle]");
+        const glm::dmat4 m = props.count("to_world") ? mXml.transform(props.at("to_world")) : glm::dmat4(1.0);
         Light l;
         l.type = Light::Type::Spot;
         l.position = glm::vec3(m * glm::dvec4(0, 0, 0, 1));
         const glm::dvec3 axis = glm::dvec3(m * glm::dvec4(0, 0, 1, 0));
-        if (!(glm::length(axis) > 0.0)) fail(e, "to_world collapses the spot's axis");
+        if (!(glm::length(axis) > 0.0)) XmlReader::fail(e, "to_world collapses the spot's axis");
         l.direction = glm::vec3(glm::normalize(axis));
-        l.intensity = props.count("intensity") ? color(props.at("intensity")) : glm::vec3(1.0f);
+        l.intensity = props.count("intensity") ? mXml.color(props.at("intensity")) : glm::vec3(1.0f);
         l.coneAngleDegrees = float(cutoff);
         l.falloffDegrees = float(cutoff - beam);
         // The two profiles over the edge, and the power each emits (2 pi int profile sin).
@@ -639,7 +376,7 @@ private:
                       "spot (cutoff %g, beam %g degrees): Mitsuba's edge, linear in angle, read as a smoothstep in "
                       "cosine: emitted power %+.2f %%, the profile off by at most %.3f",
                       cutoff, beam, 100.0 * (ours / theirs - 1.0), worst);
-        note(text);
+        mXml.note(text);
         return l;
     }
 
@@ -648,63 +385,63 @@ private:
     // looks d up at u = atan2(m.z, m.x) / 2 pi + 1/2 of m = R_y(-rotation) d: the same texel for
     // every d when to_world is a rotation by alpha about +y and rotation = alpha - 90 degrees.
     void environmentMap(const Element& e) {
-        if (mScene.environment.present) fail(e, "a second environment emitter");
-        const auto props = properties(e, {"filename", "scale", "to_world"});
-        if (!props.count("filename")) fail(e, "missing <string name=\"filename\">");
+        if (mScene.environment.present) XmlReader::fail(e, "a second environment emitter");
+        const auto props = mXml.properties(e, {"filename", "scale", "to_world"});
+        if (!props.count("filename")) XmlReader::fail(e, "missing <string name=\"filename\">");
         Environment& env = mScene.environment;
-        env.file = resolve(props.at("filename"), attribute(props.at("filename"), "value"));
+        env.file = mXml.resolve(props.at("filename"), mXml.attribute(props.at("filename"), "value"));
         env.map = readImage(env.file);
         for (const glm::vec3& p : env.map.pixels()) {
-            if (!(p.x >= 0.0f && p.y >= 0.0f && p.z >= 0.0f)) fail(e, "the map has negative or non-finite radiance");
+            if (!(p.x >= 0.0f && p.y >= 0.0f && p.z >= 0.0f)) XmlReader::fail(e, "the map has negative or non-finite radiance");
         }
-        env.scale = props.count("scale") ? float(number(props.at("scale"), "value")) : 1.0f;
-        if (!(env.scale >= 0.0f)) fail(e, "negative scale");
+        env.scale = props.count("scale") ? float(mXml.number(props.at("scale"), "value")) : 1.0f;
+        if (!(env.scale >= 0.0f)) XmlReader::fail(e, "negative scale");
         double alpha = 0.0;
         if (props.count("to_world")) {
-            const glm::dmat4 m = transform(props.at("to_world"));
+            const glm::dmat4 m = mXml.transform(props.at("to_world"));
             const glm::dmat3 r(m);
             const double off = glm::length(glm::dvec3(r[1]) - glm::dvec3(0, 1, 0)) +
                                std::abs(r[0][1]) + std::abs(r[2][1]) + std::abs(glm::determinant(r) - 1.0) +
                                std::abs(glm::dot(r[0], r[0]) - 1.0) + std::abs(glm::dot(r[0], r[2]));
-            if (off > 1e-6) fail(props.at("to_world"), "an envmap's to_world must be a rotation about +y");
+            if (off > 1e-6) XmlReader::fail(props.at("to_world"), "an envmap's to_world must be a rotation about +y");
             alpha = std::atan2(-r[0][2], r[0][0]) * 180.0 / kPi;
         }
         env.rotationDegrees = float(alpha - 90.0);
         env.present = true;
-        note("envmap read with rotation " + formatNumber(env.rotationDegrees) +
+        mXml.note("envmap read with rotation " + formatNumber(env.rotationDegrees) +
              " degrees (Mitsuba's longitude starts at -z, bundlelab's at -x)");
     }
 
     void sensor(const Element& e) {
-        if (mCameraSet) fail(e, "a second sensor (bundlelab renders one camera)");
+        if (mCameraSet) XmlReader::fail(e, "a second sensor (bundlelab renders one camera)");
         if (std::string(e.node.attribute("type").value()) != "perspective") {
-            fail(e, "sensor type not supported (supported: perspective)");
+            XmlReader::fail(e, "sensor type not supported (supported: perspective)");
         }
-        const auto props = properties(e, {"fov", "fov_axis", "to_world"}, {"near_clip", "far_clip", "focus_distance"});
+        const auto props = mXml.properties(e, {"fov", "fov_axis", "to_world"}, {"near_clip", "far_clip", "focus_distance"});
         int width = kFilmWidth, height = kFilmHeight;
         for (const pugi::xml_node& c : e.node.children()) {
             if (c.type() != pugi::node_element || c.attribute("name")) continue;
             const Element child{c, e.doc};
             const std::string tag = c.name();
             if (tag == "sampler") {
-                note("<sampler> ignored: the samples are the mode's");
+                mXml.note("<sampler> ignored: the samples are the mode's");
             } else if (tag == "film") {
-                if (std::string(c.attribute("type").value()) != "hdrfilm") fail(child, "film type not supported (supported: hdrfilm)");
-                const auto film = properties(child, {"width", "height"}, {"pixel_format", "rfilter", "component_format"});
+                if (std::string(c.attribute("type").value()) != "hdrfilm") XmlReader::fail(child, "film type not supported (supported: hdrfilm)");
+                const auto film = mXml.properties(child, {"width", "height"}, {"pixel_format", "rfilter", "component_format"});
                 for (const pugi::xml_node& f : c.children("rfilter")) {
-                    note(std::string("<rfilter type=\"") + f.attribute("type").value() + "\"> ignored: pixels are box-filtered");
+                    mXml.note(std::string("<rfilter type=\"") + f.attribute("type").value() + "\"> ignored: pixels are box-filtered");
                 }
-                if (film.count("width")) width = int(number(film.at("width"), "value"));
-                if (film.count("height")) height = int(number(film.at("height"), "value"));
-                if (width < 1 || height < 1 || width > 16384 || height > 16384) fail(child, "film size outside [1, 16384]");
+                if (film.count("width")) width = int(mXml.number(film.at("width"), "value"));
+                if (film.count("height")) height = int(mXml.number(film.at("height"), "value"));
+                if (width < 1 || height < 1 || width > 16384 || height > 16384) XmlReader::fail(child, "film size outside [1, 16384]");
             } else {
-                fail(child, "not supported inside a sensor (supported: film, sampler)");
+                XmlReader::fail(child, "not supported inside a sensor (supported: film, sampler)");
             }
         }
-        if (!props.count("fov")) fail(e, "missing <float name=\"fov\"> (focal_length is not supported)");
-        double fov = number(props.at("fov"), "value");
-        if (!(fov > 0.0 && fov < 180.0)) fail(props.at("fov"), "fov outside (0, 180) degrees");
-        const std::string axis = props.count("fov_axis") ? attribute(props.at("fov_axis"), "value") : "x";
+        if (!props.count("fov")) XmlReader::fail(e, "missing <float name=\"fov\"> (focal_length is not supported)");
+        double fov = mXml.number(props.at("fov"), "value");
+        if (!(fov > 0.0 && fov < 180.0)) XmlReader::fail(props.at("fov"), "fov outside (0, 180) degrees");
+        const std::string axis = props.count("fov_axis") ? mXml.attribute(props.at("fov_axis"), "value") : "x";
         FovAxis fovAxis = FovAxis::X;
         if (axis == "y" || (axis == "smaller" && height < width) || (axis == "larger" && height > width)) {
             fovAxis = FovAxis::Y;
@@ -712,20 +449,20 @@ private:
             // The same frustum with the angle across x.
             const double t = std::tan(0.5 * fov * kPi / 180.0) * width / std::hypot(double(width), double(height));
             fov = 2.0 * std::atan(t) * 180.0 / kPi;
-            note("sensor fov_axis 'diagonal' converted to " + formatNumber(fov) + " degrees across x");
+            mXml.note("sensor fov_axis 'diagonal' converted to " + formatNumber(fov) + " degrees across x");
         } else if (axis != "x" && axis != "smaller" && axis != "larger") {
-            fail(props.at("fov_axis"), "fov_axis '" + axis + "' not supported (x, y, smaller, larger, diagonal)");
+            XmlReader::fail(props.at("fov_axis"), "fov_axis '" + axis + "' not supported (x, y, smaller, larger, diagonal)");
         }
-        const glm::dmat4 m = props.count("to_world") ? transform(props.at("to_world")) : glm::dmat4(1.0);
+        const glm::dmat4 m = props.count("to_world") ? mXml.transform(props.at("to_world")) : glm::dmat4(1.0);
         const glm::dmat3 r(m);
         const glm::dmat3 product = r * glm::transpose(r);
         double off = 0.0;
         for (int i = 0; i < 3; ++i) {
             for (int j = 0; j < 3; ++j) off = std::max(off, std::abs(product[i][j] - (i == j ? 1.0 : 0.0)));
         }
-        if (off > 1e-5) fail(props.at("to_world"), "a sensor's to_world may not scale (Mitsuba refuses it too)");
+        if (off > 1e-5) XmlReader::fail(props.at("to_world"), "a sensor's to_world may not scale (Mitsuba refuses it too)");
         if (glm::determinant(r) < 0.0) {
-            fail(props.at("to_world"), "a mirrored sensor (to_world with a negative determinant) is not supported");
+            XmlReader::fail(props.at("to_world"), "a mirrored sensor (to_world with a negative determinant) is not supported");
         }
         Camera& camera = mScene.camera;
         camera.pose.position = glm::vec3(m * glm::dvec4(0, 0, 0, 1));
@@ -737,15 +474,10 @@ private:
         mCameraSet = true;
     }
 
-    fs::path mRoot;
-    std::deque<Document> mDocs;
-    std::map<std::string, std::string> mDefaults;
-    std::vector<Element> mTop;
-    std::map<std::string, Element> mIds;
+    XmlReader mXml;
     std::map<std::string, std::uint32_t> mMaterialOf;
     std::map<std::string, int> mTextureOf;
     std::optional<std::uint32_t> mDefaultMaterial;
-    std::vector<std::string> mNotes;
     bool mCameraSet = false;
     Scene mScene;
 };
