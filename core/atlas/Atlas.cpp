@@ -258,18 +258,6 @@ std::vector<std::pair<std::size_t, std::size_t>> coverTexels(const std::vector<F
     return uncovered;
 }
 
-// Charts of their own for sub-texel triangles cost texels in proportion to the triangles' extent,
-// not their area: a scanned or detailed model's small triangles take a few pages (Sibenik and Sponza
-// at 512^2: about 5 pages by the estimate below, the bunny 1), a floor of 20,000 slivers of aspect
-// 1e4 hundreds (308 at 128^2) and a 1M-triangle floor thousands, where every such texel sees only
-// its own triangle's few hits and placing them one by one takes minutes. Past
-// AtlasOptions::singleChartPages (16) times the largest of a page, the rest of the scene's charts and
-// a default 512^2 page (a budget of time and memory per iteration, well above what the real scenes
-// need; the last keeps small atlases of 64^2 with a few thousand slivers, about 0.5 M texels,
-// allowed), refused up front with the figures. A single's footprint is its bounding box at the atlas density plus its padding (an upper
-// bound on the mask the packer places; about twice it for slivers).
-
-// `needed` carries the texels of the singles of earlier coverage rounds: the budget is for all.
 // One packing and covering of the charts (packAndCover).
 struct Covered {
     std::vector<FlatChart> charts;
@@ -292,29 +280,33 @@ constexpr int kRoomAttempts = 3;
 constexpr double kRoomAtMost = 0.25;
 constexpr double kRoomMargin = 2.0;
 
-// The texels a placed single-triangle chart takes with its padding.
-double singleFootprint(const FlatChart& placed, int padding) {
+// The texels a single-triangle chart takes with its padding: its bounding box, its uv scaled by
+// `texelsPerUv` (the density before placing, 1 once placed: uv are then page texels).
+double singleFootprint(const FlatChart& chart, float texelsPerUv, int padding) {
     glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-    for (const glm::vec2& q : placed.uv) {
+    for (const glm::vec2& q : chart.uv) {
         lo = glm::min(lo, q);
         hi = glm::max(hi, q);
     }
-    const glm::vec2 texels = glm::ceil(hi - lo) + 1.0f + 2.0f * float(padding); // uv: page texels
-
+    const glm::vec2 texels = glm::ceil((hi - lo) * texelsPerUv) + 1.0f + 2.0f * float(padding);
     return double(texels.x) * double(texels.y);
 }
 
+// Charts of their own for sub-texel triangles cost texels in proportion to the triangles' extent,
+// not their area: a scanned or detailed model's small triangles take a few pages (Sibenik and Sponza
+// at 512^2: about 5 pages by the estimate below, the bunny 1), a floor of 20,000 slivers of aspect
+// 1e4 hundreds (308 at 128^2) and a 1M-triangle floor thousands, where every such texel sees only
+// its own triangle's few hits and placing them one by one takes minutes. Past
+// AtlasOptions::singleChartPages (16) times the largest of a page, the rest of the scene's charts and
+// a default 512^2 page (a budget of time and memory per iteration, well above what the real scenes
+// need; the last keeps small atlases of 64^2 with a few thousand slivers, about 0.5 M texels,
+// allowed), refused up front with the figures. A single's footprint is its bounding box at the atlas density plus its padding (an upper
+// bound on the mask the packer places; about twice it for slivers).
+
+// `needed` carries the texels of the singles of earlier coverage rounds: the budget is for all.
 void refuseOutweighingSingles(const std::vector<FlatChart>& singles, float density, const AtlasOptions& options,
                               std::size_t occupied, int width, int height, std::size_t triangles, double& needed) {
-    for (const FlatChart& c : singles) {
-        glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-        for (const glm::vec2& q : c.uv) {
-            lo = glm::min(lo, q);
-            hi = glm::max(hi, q);
-        }
-        const glm::vec2 texels = glm::ceil((hi - lo) * density) + 1.0f + 2.0f * float(options.padding);
-        needed += double(texels.x) * double(texels.y);
-    }
+    for (const FlatChart& c : singles) needed += singleFootprint(c, density, options.padding);
     const double page = double(width) * double(height);
     if (needed > options.singleChartPages * std::max({double(occupied), page, options.singleChartFloorTexels})) {
         throw Error("atlas: " + std::to_string(singles.size()) + " of the scene's " + std::to_string(triangles) +
@@ -389,7 +381,7 @@ Covered packAndCover(const Scene& scene, const AtlasOptions& options, const std:
             }
             placeChart(single, density, offset, turns);
             single.page = page;
-            if (int(page) >= out.packedPages) out.spilledTexels += singleFootprint(single, options.padding);
+            if (int(page) >= out.packedPages) out.spilledTexels += singleFootprint(single, 1.0f, options.padding);
             charts.push_back(std::move(single));
         }
     }

@@ -14,14 +14,12 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <map>
 #include <optional>
 #include <set>
 
 namespace bl {
 
-namespace fs = std::filesystem;
 
 namespace {
 
