@@ -175,11 +175,7 @@ private:
             XmlReader::fail(emitter, "a shape's emitter must be of type 'area'");
         }
         const auto props = mXml.properties(emitter, {"radiance"});
-        const glm::vec3 l = props.count("radiance") ? mXml.color(props.at("radiance")) : glm::vec3(1.0f);
-        for (int c = 0; c < 3; ++c) {
-            if (!(l[c] >= 0.0f)) XmlReader::fail(emitter, "negative radiance");
-        }
-        return l;
+        return props.count("radiance") ? mXml.color(props.at("radiance")) : glm::vec3(1.0f);
     }
 
     // <shape type="instance"> of a <shape type="shapegroup">: each shape of the group placed by
@@ -429,8 +425,8 @@ private:
                 for (const pugi::xml_node& f : c.children("rfilter")) {
                     mXml.note(std::string("<rfilter type=\"") + f.attribute("type").value() + "\"> ignored: pixels are box-filtered");
                 }
-                if (film.count("width")) width = int(mXml.number(film.at("width"), "value"));
-                if (film.count("height")) height = int(mXml.number(film.at("height"), "value"));
+                if (film.count("width")) width = mXml.integer(film.at("width"), "value");
+                if (film.count("height")) height = mXml.integer(film.at("height"), "value");
                 if (width < 1 || height < 1 || width > 16384 || height > 16384) XmlReader::fail(child, "film size outside [1, 16384]");
             } else {
                 XmlReader::fail(child, "not supported inside a sensor (supported: film, sampler)");

@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace bl::mitsuba {
@@ -214,9 +215,24 @@ glm::vec3 XmlReader::color(const Element& e) const {
         fail(e, "only <rgb> or <float> values are supported (no spectra or textures yet)");
     }
     const std::vector<double> v = numbers(e, attribute(e, "value"));
+    if (!(v.size() == 1 || (v.size() == 3 && tag == "rgb"))) fail(e, "an <rgb> value has three numbers, a <float> one");
+    for (double x : v) {
+        // Every colour here (reflectance, radiance, intensity) is non-negative and rendered in float.
+        if (x < 0.0) fail(e, "value " + formatNumber(x) + " is negative");
+        if (x > double(std::numeric_limits<float>::max())) {
+            fail(e, "value " + formatNumber(x) + " is more than a 32-bit float holds");
+        }
+    }
     if (v.size() == 1) return glm::vec3(float(v[0]));
-    if (v.size() != 3 || tag != "rgb") fail(e, "an <rgb> value has three numbers, a <float> one");
     return {float(v[0]), float(v[1]), float(v[2])};
+}
+
+int XmlReader::integer(const Element& e, const char* name) const {
+    const double v = number(e, name);
+    if (v != std::floor(v) || std::abs(v) > double(std::numeric_limits<int>::max())) {
+        fail(e, std::string("attribute '") + name + "' must be an integer, got " + formatNumber(v));
+    }
+    return int(v);
 }
 
 glm::dmat4 XmlReader::transform(const Element& e) const {

@@ -52,10 +52,11 @@ public:
 
     std::vector<double> numbers(const Element& e, const std::string& text) const;
     double number(const Element& e, const char* name) const; // attribute `name`: one number
+    int integer(const Element& e, const char* name) const;   // one whole number
     glm::dvec3 triple(const Element& e, const char* name) const;
     // x, y, z attributes (each defaulting to `fallback`) or one `value` of one or three numbers.
     glm::dvec3 components(const Element& e, double fallback) const;
-    // An <rgb> or <float> value.
+    // An <rgb> or <float> value: non-negative, within float's range.
     glm::vec3 color(const Element& e) const;
     // The operations of a <transform>, each applied after the ones before.
     glm::dmat4 transform(const Element& e) const;

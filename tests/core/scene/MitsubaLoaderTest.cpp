@@ -246,6 +246,8 @@ TEST(MitsubaLoader, UnsupportedElementsAreErrorsWithFileAndLine) {
         {"<shape type=\"rectangle\"><transform name=\"to_world\"><skew/></transform></shape>",
          "transform operation not supported"},
         {"<shape type=\"sphere\"><float name=\"radius\" value=\"$missing\"/></shape>", "'$missing' has no <default>"},
+        {"<emitter type=\"point\"><rgb name=\"intensity\" value=\"1e39\"/></emitter>", "more than a 32-bit float holds"},
+        {"<emitter type=\"constant\"><rgb name=\"radiance\" value=\"1, -5, 1\"/></emitter>", "value -5 is negative"},
         {"<shape type=\"sphere\"><transform name=\"to_world\"><scale x=\"2\"/></transform></shape>",
          "a sphere's to_world must scale uniformly"},
         {"<emitter type=\"point\"><point name=\"position\" value=\"0, 0, 0\"/>"
@@ -264,6 +266,12 @@ TEST(MitsubaLoader, UnsupportedElementsAreErrorsWithFileAndLine) {
                                               "<shape type=\"cube\"/></scene>"));
     });
     EXPECT_NE(e.find("may not scale"), std::string::npos) << e;
+    e = errorOf([] {
+        loadScene(writeTempFile("film.xml", "<scene><sensor type=\"perspective\"><float name=\"fov\" value=\"30\"/>"
+                                            "<film type=\"hdrfilm\"><integer name=\"width\" value=\"64.5\"/></film>"
+                                            "</sensor><shape type=\"cube\"/></scene>"));
+    });
+    EXPECT_NE(e.find("must be an integer, got 64.5"), std::string::npos) << e;
     e = errorOf([] { loadScene(writeTempFile("nocamera.xml", "<scene><shape type=\"cube\"/></scene>")); });
     EXPECT_NE(e.find("no <sensor"), std::string::npos) << e;
 }
