@@ -28,8 +28,16 @@ ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, st
 
 ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution,
                                std::uint32_t cubes)
-    : mScene(&scene), mResolution(resolution), mLightCount(static_cast<std::uint32_t>(scene.lights().size())),
-      mCubes(cubes) {
+    : ShadowCubePass(ctx, scene, resolution, cubes, static_cast<std::uint32_t>(scene.lights().size())) {}
+
+ShadowCubePass ShadowCubePass::forPositions(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution,
+                                            std::uint32_t cubes) {
+    return ShadowCubePass(ctx, scene, resolution, cubes, 0u);
+}
+
+ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution,
+                               std::uint32_t cubes, std::uint32_t lights)
+    : mScene(&scene), mResolution(resolution), mLightCount(lights), mCubes(cubes) {
     if (mCubes < mLightCount) {
         throw Error("shadow cubes: " + std::to_string(mCubes) + " cube(s) cannot hold the scene's " +
                     std::to_string(mLightCount) + " light(s)");

@@ -20,6 +20,10 @@ public:
     // per-light record.
     ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution);
     ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution, std::uint32_t cubes);
+    // `cubes` cubes for record(cmd, position, ...) alone, however many lights the scene has: the
+    // per-light record and refreshFor do nothing (e.g. points sampled on emitters).
+    static ShadowCubePass forPositions(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution,
+                                       std::uint32_t cubes);
 
     // Renders every light's cube (cube l = light l) at scene `time`.
     void record(VkCommandBuffer cmd, double time, vk::GpuTimer* timer);
@@ -42,6 +46,8 @@ public:
     static constexpr std::uint32_t kFaces = 6;
 
 private:
+    ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution, std::uint32_t cubes,
+                   std::uint32_t lights);
     // Renders the six faces of `cube` from `position`, leaving its layers in GENERAL.
     void recordCube(VkCommandBuffer cmd, const glm::vec3& position, std::uint32_t cube, double time);
 

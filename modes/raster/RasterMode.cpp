@@ -18,6 +18,11 @@ std::vector<ParamSpec> RasterMode::parameters() {
     return {
         {kShadowResolution, std::int64_t{1024}, "texels",
          "side of each shadow cube face ([TO12] used 1024^2 per face for direct light)", 16, 8192, {}},
+        {kEmitterPoints, std::int64_t{16}, "points",
+         "points drawn on the area emitters per iteration, by power, each shadowed by a cube (0: area lights left out)",
+         0, 1024, {}},
+        {kEmitterShadowResolution, std::int64_t{256}, "texels", "side of each emitter point's shadow cube face", 16,
+         4096, {}},
         {kJitter, true, "", "move the sample inside the pixel (box filter; seed 0 starts at the centre, other seeds shift the sequence)", 0, 1, {}},
     };
 }
@@ -32,6 +37,7 @@ struct RasterMode::Gpu {
     std::unique_ptr<gpu::GpuScene> scene;
     std::unique_ptr<gpu::CameraPass> camera;
     std::unique_ptr<gpu::ShadowCubePass> shadows;
+    std::unique_ptr<gpu::EmitterPointPass> emitterPoints;
     vk::DescriptorSetLayout setLayout;
     vk::DescriptorPool pool;
     VkDescriptorSet set = VK_NULL_HANDLE;
@@ -53,16 +59,23 @@ std::vector<PlannedPass> RasterMode::plan(const Scene& scene) const {
                               (f.animated ? "every iteration (animated scene)" : "once (static scene)")});
     }
     passes.push_back({"gbuffer", true, std::to_string(f.triangles) + " triangles"});
+    const auto points = mSettings.getInt(kEmitterPoints);
+    const bool areaLight = f.emissiveMeshes && points > 0;
+    if (areaLight) {
+        passes.push_back({"emitter points", true,
+                          std::to_string(points) + " point(s) on the emitters per iteration, by power, x 6 faces of " +
+                              std::to_string(mSettings.getInt(kEmitterShadowResolution)) + "^2"});
+    }
     std::string shading = f.shadowCastingLights() ? "direct light" : "";
     auto add = [&shading](const std::string& s) { shading += (shading.empty() ? "" : ", ") + s; };
     if (f.emissiveMeshes) add("visible emitters");
+    if (areaLight) add("direct light from the emitters");
     if (f.environment) add("environment behind geometry");
     passes.push_back({"shade", true, shading.empty() ? "nothing lights the scene: black" : shading});
-    // Raster is direct light from point and spot lights only: emitters and the environment are
-    // seen, but light nothing.
-    if (f.emissiveMeshes) {
-        passes.push_back({"area light", false, "raster lights with point and spot lights only: use reference or "
-                                               "multibounce", true});
+    // Raster is direct light from point and spot lights and (emitter points) area emitters: the
+    // environment is seen, but lights nothing.
+    if (f.emissiveMeshes && !areaLight) {
+        passes.push_back({"area light", false, "emitter_points = 0 leaves the area emitters out", true});
     }
     if (f.environment) {
         passes.push_back({"environment light", false, "raster lights with point and spot lights only: use skylight, "
@@ -86,8 +99,11 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     const VkDeviceSize pixels = VkDeviceSize(width) * height;
     const VkDeviceSize shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
     const VkDeviceSize lights = scene.lights.size();
+    const auto points = static_cast<std::uint32_t>(mSettings.getInt(kEmitterPoints));
+    const auto pointSide = static_cast<std::uint32_t>(mSettings.getInt(kEmitterShadowResolution));
     ctx->requireDeviceMemory(pixels * gpu::CameraPass::bytesPerPixel(shader::kRasterAccumLayers) +
-                                 shadowSide * shadowSide * 4 * (6 * lights + 1),
+                                 shadowSide * shadowSide * 4 * (6 * lights + 1) +
+                                 (scene.features().emissiveMeshes ? gpu::EmitterPointPass::bytesFor(points, pointSide) : 0),
                              "raster at " + std::to_string(width) + "x" + std::to_string(height));
 
     auto g = std::make_unique<Gpu>();
@@ -95,18 +111,24 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kRasterAccumLayers);
     g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene,
                                                        static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution)));
+    g->emitterPoints = std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene, points, pointSide);
     g->timer = vk::GpuTimer(*ctx);
 
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
     g->setLayout = vk::makeDescriptorSetLayout(
         device, {{shader::kRasterBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kRasterBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-    g->pool = vk::DescriptorPool(device, 1, 1);
+                 {shader::kRasterBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
+                 {shader::kRasterBindingEmitterPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kRasterBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
+    g->pool = vk::DescriptorPool(device, 1, 2);
     g->set = g->pool.allocate(g->setLayout.get());
     vk::DescriptorWriter()
         .buffer(shader::kRasterBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
         .image(shader::kRasterBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->shadows->maps().view(),
                VK_IMAGE_LAYOUT_GENERAL)
+        .buffer(shader::kRasterBindingEmitterPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->emitterPoints->buffer())
+        .image(shader::kRasterBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+               g->emitterPoints->maps().view(), VK_IMAGE_LAYOUT_GENERAL)
         .update(device, g->set);
     VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
     g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::RasterPush), cs);
@@ -123,18 +145,22 @@ void RasterMode::iterate(const IterationInfo& info) {
     const std::uint32_t height = g.camera->height();
     const gpu::CameraSample sample = g.camera->sample(mIterations, mSettings.getBool(kJitter), info.time, info.seed);
     const bool renderShadows = g.shadows->refreshFor(*mContext, *g.scene, info.time);
+    g.emitterPoints->prepare(static_cast<std::uint32_t>(info.seed ^ (info.seed >> 32)), mIterations, info.time);
 
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         if (renderShadows) {
             g.shadows->record(cmd, info.time, &g.timer);
         }
+        g.emitterPoints->record(cmd, info.time, &g.timer);
         g.camera->record(cmd, sample, &g.timer);
 
         std::uint32_t scope = g.timer.start(cmd, "shade");
         shader::RasterPush push{};
         push.lightCount = g.shadows->lightCount();
         push.shadowResolution = g.shadows->resolution();
+        push.emitterPointCount = g.emitterPoints->count();
+        push.emitterShadowResolution = g.emitterPoints->resolution();
         push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
         push.environmentRotation = g.scene->environmentRotation();
         push.samplePosition = sample.samplePosition;

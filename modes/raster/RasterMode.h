@@ -2,9 +2,13 @@
 //
 // Implements, per pixel sample: L = L_e (front faces of emitters) + sum over point/spot lights of
 //   f(x, wi, wo) I(-wi) (n.wi) / r^2 V(x),
-// with V from omnidirectional shadow maps (cube faces, 4x4 PCF, receiver-plane depth test), and
-// the environment's radiance for camera rays that escape. No indirect light, no light from the
-// environment or emitters onto surfaces: those are the other modes' job.
+// with V from omnidirectional shadow maps (cube faces, 4x4 PCF, receiver-plane depth test),
+// + direct light from area emitters by next-event estimation: `emitter_points` points y_k drawn on
+// the emitters by power each iteration, each shadowed by its own cube (gpu/EmitterPointPass.h,
+// shared/EmitterPoints.h: 1/M sum_k f L_e(y_k) cos_x cos_y V / (r^2 p_A(y_k))), so the average over
+// iterations converges to the emitters' direct light,
+// + the environment's radiance for camera rays that escape. No indirect light, no light from the
+// environment onto surfaces: those are the other modes' job.
 //
 // One iteration = one sample per pixel at a sub-pixel position (a Halton (2,3) sequence shifted by
 // the seed: seed 0 starts at the pixel centre; core/sampling/PixelSamples.h), so iterating
@@ -12,10 +16,13 @@
 //
 // Parameters (`bundlelab modes`):
 //   shadow_resolution  1024  texels   side of each shadow cube face
+//   emitter_points     16    points   on the area emitters per iteration (0: area lights left out)
+//   emitter_shadow_resolution 256 texels side of each emitter point's shadow cube face
 //   jitter             true           move the sample inside the pixel (false: pixel centres)
 #pragma once
 
 #include "gpu/CameraPass.h"
+#include "gpu/EmitterPointPass.h"
 #include "gpu/ShadowCubePass.h"
 #include "modes/Mode.h"
 
@@ -28,6 +35,8 @@ class RasterMode final : public Mode {
 public:
     static constexpr const char* kShadowResolution = "shadow_resolution";
     static constexpr const char* kJitter = "jitter";
+    static constexpr const char* kEmitterPoints = "emitter_points";
+    static constexpr const char* kEmitterShadowResolution = "emitter_shadow_resolution";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);

@@ -154,7 +154,7 @@ run_lost_work)
     sed -e 's/^intensity = .*/intensity = [3e38, 3e38, 3e38]/' -e 's/^position  = .*/position = [0.0, 0.1, 0.0]/' \
         -e 's/^position   = .*/position   = [0.0, 0.5, 0.0]/' -e 's/^up         = .*/up = [0.0, 0.0, 1.0]/' \
         -e 's/^fov        = .*/fov = 10.0/' data/analytic/point-over-plane.toml >"$out/all.toml"
-    printf '[experiment]\nname = "lost"\niterations = 1\n[reference]\nenabled = false\n[[scene]]\nfile = "all.toml"\nresolution = [8, 8]\n[[scene]]\nfile = "%s"\nresolution = [8, 8]\n[[mode]]\nmode = "raster"\nsettings = { shadow_resolution = 64 }\n' \
+    printf '[experiment]\nname = "lost"\niterations = 1\n[reference]\nenabled = false\n[[scene]]\nfile = "all.toml"\nresolution = [8, 8]\n[[scene]]\nfile = "%s"\nresolution = [8, 8]\n[[mode]]\nmode = "raster"\nsettings = { shadow_resolution = 64, emitter_points = 0 }\n' \
         "$PWD/data/cornell-box/cornell.toml" >"$out/lost.toml"
     "$bl" run "$out/lost.toml" --out "$out/results" >"$out/stdout.txt" 2>"$out/stderr.txt" && fail "run exit code 0"
     cat "$out/stderr.txt"
@@ -177,14 +177,18 @@ lost_vpls)
     [[ -e "$out/up.exr" ]] || fail "no image"
     ;;
 lights_left_out)
-    # An area-lit box in raster: the area light lights nothing there, said once at render time.
+    # An area-lit box in raster without emitter points: the area light lights nothing there, said
+    # once at render time.
     "$bl" render data/cornell-box/cornell.toml --mode raster --width 8 --height 8 --set shadow_resolution=64 \
-        --out "$out/r.exr" 2>"$out/stderr.txt" || fail "render failed"
+        --set emitter_points=0 --out "$out/r.exr" 2>"$out/stderr.txt" || fail "render failed"
     [[ $(grep -c "raster: the scene's area light is left out of the image" "$out/stderr.txt") -eq 1 ]] ||
         { cat "$out/stderr.txt"; fail "no single warning for the area light"; }
     "$bl" render data/cornell-box/cornell-point.toml --mode raster --width 8 --height 8 --set shadow_resolution=64 \
         --out "$out/p.exr" 2>"$out/point.txt" || fail "render failed"
     grep -q "left out" "$out/point.txt" && fail "a warning for a scene the mode renders whole"
+    "$bl" render data/cornell-box/cornell.toml --mode raster --width 8 --height 8 --set shadow_resolution=64 \
+        --set emitter_shadow_resolution=64 --out "$out/a.exr" 2>"$out/area.txt" || fail "render failed"
+    grep -q "left out" "$out/area.txt" && fail "a warning for an area light raster renders (emitter points)"
     ;;
 setting_trades)
     # A shadow cube too coarse for the box: said once at render time, with the setting that fixes it.

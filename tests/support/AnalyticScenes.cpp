@@ -2,6 +2,8 @@
 
 #include <shared/Camera.h>
 
+#include <cmath>
+
 namespace bl::test {
 
 Mesh makeRectangle(glm::vec2 lo, glm::vec2 hi, float height, bool facingDown, std::uint32_t material) {
@@ -55,6 +57,20 @@ float pointLitFloorRadiance(glm::vec3 p, glm::vec3 light, float intensity, float
     float r2 = glm::dot(toLight, toLight);
     float cosine = toLight.y / std::sqrt(r2);
     return albedo / shader::kPi * intensity * cosine / r2;
+}
+
+float polygonIrradiance(glm::vec3 x, glm::vec3 n, const std::vector<glm::vec3>& polygon, float radiance) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const glm::dvec3 a = glm::normalize(glm::dvec3(polygon[i] - x));
+        const glm::dvec3 b = glm::normalize(glm::dvec3(polygon[(i + 1) % polygon.size()] - x));
+        const glm::dvec3 c = glm::cross(a, b);
+        const double length = glm::length(c);
+        if (length > 0.0) {
+            sum += std::atan2(length, glm::dot(a, b)) * glm::dot(glm::dvec3(n), c / length);
+        }
+    }
+    return static_cast<float>(0.5 * radiance * std::abs(sum));
 }
 
 } // namespace bl::test

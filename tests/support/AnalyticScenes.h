@@ -22,4 +22,10 @@ glm::vec3 cameraRayHitY(const Scene& scene, glm::vec2 pixel, float planeY, float
 // I at `light`: rho / pi * I cos(theta) / r^2.
 float pointLitFloorRadiance(glm::vec3 p, glm::vec3 light, float intensity, float albedo);
 
+// Irradiance at x (normal n) from a convex polygon of constant radiance L seen from x's front
+// (Lambert's formula: E = L / 2 sum_i angle(a_i, a_{i+1}) n . unit(a_i x a_{i+1}), a_i = v_i - x,
+// the polygon wound so that it appears counter-clockwise from x; no occlusion, no one-sidedness:
+// the caller knows which side emits).
+float polygonIrradiance(glm::vec3 x, glm::vec3 n, const std::vector<glm::vec3>& polygon, float radiance);
+
 } // namespace bl::test

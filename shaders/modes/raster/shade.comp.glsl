@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Raster mode shading: emitted radiance of visible emitters, direct light from point and spot
-// lights with cube shadow maps (4x4 PCF), and the environment seen by rays that escape. Adds one
+// lights and from this iteration's points on the area emitters with cube shadow maps (4x4 PCF),
+// and the environment seen by rays that escape. Adds one
 // sample per pixel to the accumulator (emitted and direct layers).
 #include "modes/raster/RasterShared.h"
 #include "shared/Brdf.h"
@@ -10,7 +11,11 @@
 #include "gpu/CameraSet.glsl"
 #define BL_SHADOW_SET kRasterSet
 #define BL_SHADOW_BINDING kRasterBindingShadowMaps
+#define BL_SHADOW_BINDING_2 kRasterBindingEmitterShadowMaps
 #include "gpu/ShadowCubeLookup.glsl"
+#define BL_EMITTER_POINTS_SET kRasterSet
+#define BL_EMITTER_POINTS_BINDING kRasterBindingEmitterPoints
+#include "gpu/EmitterPointLight.glsl"
 
 layout(local_size_x = kRasterGroupSize, local_size_y = kRasterGroupSize) in;
 
@@ -63,6 +68,10 @@ void main() {
         layers[l] = vec3(0.0);
     }
     layers[kPathEmitted] = imageLoad(gbuffer[kGBufferEmission], pixel).rgb;
-    layers[kPathDirect] = directLight(position, normalMaterial.xyz, materials[uint(normalMaterial.w)], albedo);
+    GpuMaterial material = materials[uint(normalMaterial.w)];
+    layers[kPathDirect] = directLight(position, normalMaterial.xyz, material, albedo) +
+                          blEmitterPointsLight(push.emitterPointCount, push.emitterShadowResolution, position,
+                                               normalMaterial.xyz, material, albedo,
+                                               normalize(camera.position - position), 0.0);
     blAccumulate(pixel, layers);
 }

@@ -9,11 +9,12 @@ namespace bl::test {
 
 class RasterTest : public VulkanTest {
 protected:
-    ImageSet render(const Scene& scene, std::uint32_t iterations = 1, const std::vector<std::string>& settings = {}) {
+    ImageSet render(const Scene& scene, std::uint32_t iterations = 1, const std::vector<std::string>& settings = {},
+                    std::uint64_t seed = 0) {
         std::unique_ptr<Mode> mode = createMode("raster", settings);
         mode->setScene(scene, &ctx());
         for (std::uint32_t i = 0; i < iterations; ++i) {
-            mode->iterate({i, 0, 0.0});
+            mode->iterate({i, seed, 0.0});
         }
         ImageSet out = mode->resolve();
         EXPECT_EQ(out.radiance().countNonFinite(), 0u);

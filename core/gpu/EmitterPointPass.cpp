@@ -1,0 +1,46 @@
+#include "gpu/EmitterPointPass.h"
+
+#include <cstring>
+
+namespace bl::gpu {
+
+namespace {
+// How far a point's shadow cube centre sits in front of its emitter, as a fraction of the scene's
+// radius: ten times the cubes' near plane (lightClearance), so the emitter's own plane, edge-on
+// from y itself, lies clearly behind the centre; every receiver it lights is in front of it.
+constexpr float kLiftFraction = 1e-4f;
+} // namespace
+
+VkDeviceSize EmitterPointPass::bytesFor(std::uint32_t count, std::uint32_t resolution) {
+    return VkDeviceSize(count) * ShadowCubePass::kFaces * resolution * resolution * sizeof(float) +
+           VkDeviceSize(resolution) * resolution * sizeof(float) + count * sizeof(shader::GpuEmitterPoint);
+}
+
+EmitterPointPass::EmitterPointPass(const vk::Context& ctx, const GpuScene& gpuScene, const Scene& scene,
+                                   std::uint32_t count, std::uint32_t resolution)
+    : mSampler(scene), mRequested(mSampler.empty() ? 0u : count), mLift(kLiftFraction * gpuScene.radius()),
+      mCubes(ShadowCubePass::forPositions(ctx, gpuScene, resolution, mRequested)),
+      mBuffer(ctx, sizeof(shader::GpuEmitterPoint) * std::max(mRequested, 1u), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+              vk::MemoryUse::Upload) {}
+
+void EmitterPointPass::prepare(std::uint32_t seed, std::uint32_t iteration, double time) {
+    mPoints = mSampler.sample(mRequested, seed, iteration, time, mLift);
+    if (!mPoints.empty()) {
+        std::memcpy(mBuffer.data(), mPoints.data(), sizeof(shader::GpuEmitterPoint) * mPoints.size());
+    }
+}
+
+void EmitterPointPass::record(VkCommandBuffer cmd, double time, vk::GpuTimer* timer) {
+    if (mPoints.empty()) {
+        return;
+    }
+    std::uint32_t scope = timer ? timer->start(cmd, "emitter points") : 0;
+    for (std::uint32_t k = 0; k < mPoints.size(); ++k) {
+        mCubes.record(cmd, mPoints[k].cubeCentre, k, time, nullptr);
+    }
+    if (timer) {
+        timer->stop(cmd, scope);
+    }
+}
+
+} // namespace bl::gpu

@@ -1,0 +1,57 @@
+// Light from the emitter points of this iteration (core/gpu/EmitterPointPass.h;
+// shaders/shared/EmitterPoints.h has the estimator and the densities), reflected at x toward wo.
+// Define BL_EMITTER_POINTS_SET and BL_EMITTER_POINTS_BINDING (the GpuEmitterPoint buffer) and
+// include gpu/ShadowCubeLookup.glsl with BL_SHADOW_BINDING_2 = the points' cubes (map 1) first.
+#ifndef BL_GPU_EMITTER_POINT_LIGHT_GLSL
+#define BL_GPU_EMITTER_POINT_LIGHT_GLSL
+#include "shared/Brdf.h"
+#include "shared/EmitterPoints.h"
+
+layout(set = BL_EMITTER_POINTS_SET, binding = BL_EMITTER_POINTS_BINDING) readonly buffer BlEmitterPointBlock {
+    GpuEmitterPoint blEmitterPoints[];
+};
+
+// Multiple importance sampling (balance heuristic) against a strategy that reaches the same
+// emitter point by a direction of solid-angle density directionPdf: the points' weight is
+//   M p_A / (M p_A + directionPdf cos_y / r^2),
+// and the other strategy's is the rest (blEmitterHitWeight). directionPdf = 0: the points alone.
+// Folded into the estimate, L_e cos_x cos_y V / (r^2 M p_A) times that weight is
+//   L_e cos_x cos_y V / (M p_A r^2 + directionPdf cos_y),
+// which stays finite where either density vanishes.
+vec3 blEmitterPointsLight(uint count, uint resolution, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo,
+                          float directionPdf) {
+    vec3 radiance = vec3(0.0);
+    for (uint k = 0u; k < count; ++k) {
+        GpuEmitterPoint p = blEmitterPoints[k];
+        vec3 d = x - p.position;
+        float r2 = dot(d, d);
+        if (!(r2 > 0.0)) {
+            continue;
+        }
+        vec3 fromPoint = d * inversesqrt(r2);
+        vec3 wi = -fromPoint;
+        float cosY = dot(fromPoint, p.normal);
+        float cosX = dot(n, wi);
+        if (cosY <= 0.0 || cosX <= 0.0) {
+            continue; // behind the emitting face, or lit from the side the camera does not see
+        }
+        float visibility = blShadowVisibilityIn(1u, kShadowCubeFaces * k, resolution, x - p.cubeCentre, n);
+        if (visibility <= 0.0) {
+            continue;
+        }
+        vec3 f = blEvalBrdf(m, albedo, n, wi, wo);
+        radiance += f * p.emission * (cosX * cosY * visibility / (float(count) * p.areaPdf * r2 + directionPdf * cosY));
+    }
+    return radiance;
+}
+
+// The weight of the direction strategy where it meets an emitter of radiance `emission` at
+// distance^2 r2 and cosine cosY, against `count` emitter points (the complement of the points'
+// weight above; 1 when count = 0).
+float blEmitterHitWeight(uint count, float inversePower, vec3 emission, float directionPdf, float cosY, float r2) {
+    float points = float(count) * blEmitterAreaPdf(emission, inversePower) * r2;
+    float direction = directionPdf * cosY;
+    return direction > 0.0 ? direction / (points + direction) : (count == 0u ? 1.0 : 0.0);
+}
+
+#endif
