@@ -13,20 +13,32 @@ constexpr float kLiftFraction = 1e-4f;
 
 VkDeviceSize EmitterPointPass::bytesFor(std::uint32_t count, std::uint32_t resolution) {
     return VkDeviceSize(count) * ShadowCubePass::kFaces * resolution * resolution * sizeof(float) +
-           VkDeviceSize(resolution) * resolution * sizeof(float) + count * sizeof(shader::GpuEmitterPoint);
+           VkDeviceSize(resolution) * resolution * sizeof(float) + sizeof(shader::GpuEmitterPointHeader) + count * sizeof(shader::GpuEmitterPoint);
 }
 
 EmitterPointPass::EmitterPointPass(const vk::Context& ctx, const GpuScene& gpuScene, const Scene& scene,
                                    std::uint32_t count, std::uint32_t resolution)
     : mSampler(scene), mRequested(mSampler.empty() ? 0u : count), mLift(kLiftFraction * gpuScene.radius()),
       mCubes(ShadowCubePass::forPositions(ctx, gpuScene, resolution, mRequested)),
-      mBuffer(ctx, sizeof(shader::GpuEmitterPoint) * std::max(mRequested, 1u), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-              vk::MemoryUse::Upload) {}
+      mBuffer(ctx, sizeof(shader::GpuEmitterPointHeader) + sizeof(shader::GpuEmitterPoint) * std::max(mRequested, 1u),
+              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload) {
+    upload(); // a valid header (no points) until the first prepare()
+}
 
 void EmitterPointPass::prepare(std::uint32_t seed, std::uint32_t iteration, double time) {
     mPoints = mSampler.sample(mRequested, seed, iteration, time, mLift);
+    upload();
+}
+
+void EmitterPointPass::upload() {
+    shader::GpuEmitterPointHeader header{};
+    header.count = count();
+    header.resolution = resolution();
+    header.inversePower = inversePower();
+    auto* bytes = static_cast<std::byte*>(mBuffer.data());
+    std::memcpy(bytes, &header, sizeof(header));
     if (!mPoints.empty()) {
-        std::memcpy(mBuffer.data(), mPoints.data(), sizeof(shader::GpuEmitterPoint) * mPoints.size());
+        std::memcpy(bytes + sizeof(header), mPoints.data(), sizeof(shader::GpuEmitterPoint) * mPoints.size());
     }
 }
 

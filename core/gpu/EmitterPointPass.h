@@ -1,6 +1,6 @@
 // Next-event estimation toward area emitters on the GPU, shared by the modes (issue 21's "first
 // shot"): each iteration draws `count` points on the emitters by power (EmitterPointSampler),
-// uploads them (binding: buffer()) and renders a shadow cube from each (binding: maps(), read by
+// uploads them after a GpuEmitterPointHeader (binding: buffer()) and renders a shadow cube from each (binding: maps(), read by
 // shaders/gpu/EmitterPointLight.glsl as the second shadow map). The same machinery as virtual
 // point lights, with emitted instead of reflected light.
 #pragma once
@@ -37,6 +37,8 @@ public:
     const vk::GpuImage& maps() const { return mCubes.maps(); }
 
 private:
+    void upload(); // the header and mPoints into the buffer
+
     EmitterPointSampler mSampler;
     std::uint32_t mRequested;
     float mLift;

@@ -6,6 +6,7 @@
 #include "bundle/DirectionSampler.h"
 #include "bundle/FittingBuild.h"
 #include "gpu/CameraPass.h"
+#include "gpu/EmitterPointPass.h"
 #include "gpu/PackedTextures.h"
 #include "gpu/ShadowCubePass.h"
 #include "modes/multibounce/SurfacePoints.h"
@@ -61,6 +62,15 @@ std::vector<ParamSpec> MultibounceMode::parameters() {
          "imperfect bundles: corners: texture coordinates interpolated over each splat from its corners ([TO12p]); "
          "centre: the splat's centre texel over the whole splat (for comparison)",
          0, 0, {"corners", "centre"}},
+        {kEmitterSampling, std::string("mis"), "",
+         "area emitters after a bounce: mis (bundle hits and emitter points by the balance heuristic), bundles "
+         "(bundle hits alone, as [TO12]), points (emitter points alone)",
+         0, 0, {"mis", "bundles", "points"}},
+        {kEmitterPoints, std::int64_t{16}, "points",
+         "points drawn on the area emitters per iteration, by power, each shadowed by a cube (emitter_sampling mis, points)",
+         1, 1024, {}},
+        {kEmitterShadowResolution, std::int64_t{256}, "texels", "side of each emitter point's shadow cube face", 16,
+         4096, {}},
     };
 }
 
@@ -74,6 +84,7 @@ struct MultibounceMode::Gpu {
     std::unique_ptr<gpu::GpuScene> scene;
     std::unique_ptr<gpu::CameraPass> camera;
     std::unique_ptr<gpu::ShadowCubePass> shadows;
+    std::unique_ptr<gpu::EmitterPointPass> emitterPoints;
     std::unique_ptr<BundlePool> pool;
     std::unique_ptr<DirectionSampler> directions;
     std::unique_ptr<SurfacePoints> points; // imperfect bundles only
@@ -123,8 +134,18 @@ std::vector<PlannedPass> MultibounceMode::plan(const Scene& scene) const {
                          (f.animated ? "every iteration (animated scene)" : "once (static scene)")});
     }
     p.push_back({"gbuffer", true, "the camera's first vertex, jittered every iteration"});
+    const std::string sampling = mSettings.getString(kEmitterSampling);
+    if (f.emissiveMeshes && sampling != "bundles") {
+        p.push_back({"emitter points", true,
+                     std::to_string(mSettings.getInt(kEmitterPoints)) +
+                         " point(s) on the emitters per iteration, by power, x 6 faces of " +
+                         std::to_string(mSettings.getInt(kEmitterShadowResolution)) + "^2, at every path vertex"});
+    }
     std::string paths = "bounces through the bundles";
-    paths += f.emissiveMeshes ? "; emitters hit (front faces)" : "; no emitters to hit";
+    paths += !f.emissiveMeshes        ? "; no emitters to hit"
+             : sampling == "mis"      ? "; emitters hit (front faces), weighed against the emitter points (MIS)"
+             : sampling == "points"   ? "; emitters seen from the camera only, the emitter points light the rest"
+                                      : "; emitters hit (front faces)";
     paths += f.environment ? "; environment for escaping paths" : "; no environment: escaping paths end";
     if (f.textured) {
         char mib[32];
@@ -152,12 +173,17 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
     const auto shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
     ctx->requireDeviceMemory(VkDeviceSize(width) * height * gpu::CameraPass::bytesPerPixel(shader::kMultibounceAccumLayers) +
-                                 shadowSide * shadowSide * 4 * (6 * scene.lights.size() + 1),
+                                 shadowSide * shadowSide * 4 * (6 * scene.lights.size() + 1) +
+                                 (scene.features().emissiveMeshes && emitterPointCount() > 0
+                                      ? gpu::EmitterPointPass::bytesFor(emitterPointCount(), emitterShadowSide())
+                                      : 0),
                              "multibounce at " + std::to_string(width) + "x" + std::to_string(height));
     auto g = std::make_unique<Gpu>();
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
     g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kMultibounceAccumLayers);
     g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
+    g->emitterPoints =
+        std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene, emitterPointCount(), emitterShadowSide());
     g->bounds = scene.bounds();
 
     const auto slots = static_cast<std::uint32_t>(mSettings.getInt(kBundleCount));
@@ -205,7 +231,9 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
                  {shader::kMultibounceBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                  {shader::kMultibounceBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                  {shader::kMultibounceBindingSplats, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kMultibounceBindingTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
+                 {shader::kMultibounceBindingTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kMultibounceBindingEmitterPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kMultibounceBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
     g->descriptorPool = vk::DescriptorPool(device, 1, 6);
     g->set = g->descriptorPool.allocate(g->setLayout.get());
     vk::DescriptorWriter()
@@ -218,6 +246,9 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
         .buffer(shader::kMultibounceBindingSplats, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                 g->points ? g->points->splatBuffer() : g->noPoints.get())
         .buffer(shader::kMultibounceBindingTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->textures->buffer())
+        .buffer(shader::kMultibounceBindingEmitterPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->emitterPoints->buffer())
+        .image(shader::kMultibounceBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+               g->emitterPoints->maps().view(), VK_IMAGE_LAYOUT_GENERAL)
         .update(device, g->set);
     VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
     g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::MultibouncePush), cs);
@@ -271,6 +302,7 @@ void MultibounceMode::iterate(const IterationInfo& info) {
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
     const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time, info.seed);
     const bool renderShadows = g.shadows->refreshFor(*mContext, *g.scene, info.time);
+    g.emitterPoints->prepare(static_cast<std::uint32_t>(info.seed ^ (info.seed >> 32)), mIterations, info.time);
     shader::MultibouncePush push{};
     push.pool = g.pool->view();
     push.width = width;
@@ -283,7 +315,8 @@ void MultibounceMode::iterate(const IterationInfo& info) {
     push.flags = (g.scene->environmentPresent() ? shader::kMultibounceEnvironment : 0u) |
                  (g.scene->features().textured ? shader::kMultibounceTextured : 0u) |
                  (mSettings.getString(kSplatUv) == "centre" ? shader::kMultibounceSplatCentreUv : 0u) |
-                 (distinctBundles() ? shader::kMultibounceDistinctBundles : 0u);
+                 (distinctBundles() ? shader::kMultibounceDistinctBundles : 0u) |
+                 (mSettings.getString(kEmitterSampling) == "points" ? shader::kMultibounceEmitterPointsOnly : 0u);
     push.environmentRotation = g.scene->environmentRotation();
     push.maxSegments = static_cast<std::uint32_t>(mSettings.getInt(kMaxSegments));
     push.rrSegments = static_cast<std::uint32_t>(mSettings.getInt(kRrSegments));
@@ -297,6 +330,7 @@ void MultibounceMode::iterate(const IterationInfo& info) {
         if (renderShadows) {
             g.shadows->record(cmd, info.time, &g.timer);
         }
+        g.emitterPoints->record(cmd, info.time, &g.timer);
         g.camera->record(cmd, sample, &g.timer);
         const std::uint32_t scope = g.timer.start(cmd, "paths");
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());

@@ -13,7 +13,10 @@
 //   p_r(d) = q(d) + q(-d) = 1 / (2 pi),
 // so the path weight gains f(x, d, wo) |n.d| / p_r(d) per bounce. At each vertex it adds the
 // emission of an emitter's front face it arrived at, direct light from point and spot lights
-// (cube shadow maps, 4x4 PCF), and the environment when the path escapes; Russian roulette after
+// (cube shadow maps, 4x4 PCF), area emitters by next-event estimation through `emitter_points`
+// points drawn on them each iteration (gpu/EmitterPointPass.h), combined with the bundles' hits of
+// emitters by the balance heuristic (emitter_sampling = mis; the "first shot", which a
+// bundle direction alone rarely finds for a small emitter), and the environment when the path escapes; Russian roulette after
 // `rr_segments` segments. Contributions go to the reference's path-length layers.
 //
 // Bias: the next vertex is found along the bundle pixel's centre ray, up to half a pixel diagonal
@@ -57,6 +60,11 @@
 //   splat_scale        2.0                   imperfect: disc radius in units of sqrt(A / (pi N))
 //   splat_uv           corners               imperfect: corners (UV interpolated over the splat) or
 //                                            centre (the splat's centre texel everywhere, for comparison)
+//   emitter_sampling   mis                   area emitters after a bounce: mis (bundle hits and emitter
+//                                            points, balance heuristic), bundles (hits alone, as [TO12]),
+//                                            points (emitter points alone)
+//   emitter_points     16      points        on the emitters per iteration, by power (gpu/EmitterPointPass.h)
+//   emitter_shadow_resolution 256 texels     side of each emitter point's shadow cube face
 #pragma once
 
 #include "modes/Mode.h"
@@ -80,6 +88,9 @@ public:
     static constexpr const char* kPoints = "points";
     static constexpr const char* kSplatScale = "splat_scale";
     static constexpr const char* kSplatUv = "splat_uv";
+    static constexpr const char* kEmitterSampling = "emitter_sampling";
+    static constexpr const char* kEmitterPoints = "emitter_points";
+    static constexpr const char* kEmitterShadowResolution = "emitter_shadow_resolution";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);
@@ -102,6 +113,15 @@ private:
     void buildBundles(const IterationInfo& info);
     std::uint32_t pathsPerPixel() const { return static_cast<std::uint32_t>(mSettings.getInt(kPathsPerPixel)); }
     bool imperfect() const { return mSettings.getString(kBundles) == "imperfect"; }
+    // Emitter points per iteration: 0 with emitter_sampling = bundles.
+    std::uint32_t emitterPointCount() const {
+        return mSettings.getString(kEmitterSampling) == "bundles"
+                   ? 0u
+                   : static_cast<std::uint32_t>(mSettings.getInt(kEmitterPoints));
+    }
+    std::uint32_t emitterShadowSide() const {
+        return static_cast<std::uint32_t>(mSettings.getInt(kEmitterShadowResolution));
+    }
 
     Settings mSettings;
     const Scene* mScene = nullptr;

@@ -159,8 +159,6 @@ void RasterMode::iterate(const IterationInfo& info) {
         shader::RasterPush push{};
         push.lightCount = g.shadows->lightCount();
         push.shadowResolution = g.shadows->resolution();
-        push.emitterPointCount = g.emitterPoints->count();
-        push.emitterShadowResolution = g.emitterPoints->resolution();
         push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
         push.environmentRotation = g.scene->environmentRotation();
         push.samplePosition = sample.samplePosition;

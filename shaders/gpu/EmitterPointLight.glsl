@@ -8,6 +8,7 @@
 #include "shared/EmitterPoints.h"
 
 layout(set = BL_EMITTER_POINTS_SET, binding = BL_EMITTER_POINTS_BINDING) readonly buffer BlEmitterPointBlock {
+    GpuEmitterPointHeader blEmitterPointHeader;
     GpuEmitterPoint blEmitterPoints[];
 };
 
@@ -18,8 +19,9 @@ layout(set = BL_EMITTER_POINTS_SET, binding = BL_EMITTER_POINTS_BINDING) readonl
 // Folded into the estimate, L_e cos_x cos_y V / (r^2 M p_A) times that weight is
 //   L_e cos_x cos_y V / (M p_A r^2 + directionPdf cos_y),
 // which stays finite where either density vanishes.
-vec3 blEmitterPointsLight(uint count, uint resolution, vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo,
-                          float directionPdf) {
+vec3 blEmitterPointsLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float directionPdf) {
+    uint count = blEmitterPointHeader.count;
+    uint resolution = blEmitterPointHeader.resolution;
     vec3 radiance = vec3(0.0);
     for (uint k = 0u; k < count; ++k) {
         GpuEmitterPoint p = blEmitterPoints[k];
@@ -46,10 +48,11 @@ vec3 blEmitterPointsLight(uint count, uint resolution, vec3 x, vec3 n, GpuMateri
 }
 
 // The weight of the direction strategy where it meets an emitter of radiance `emission` at
-// distance^2 r2 and cosine cosY, against `count` emitter points (the complement of the points'
-// weight above; 1 when count = 0).
-float blEmitterHitWeight(uint count, float inversePower, vec3 emission, float directionPdf, float cosY, float r2) {
-    float points = float(count) * blEmitterAreaPdf(emission, inversePower) * r2;
+// distance^2 r2 and cosine cosY, against this iteration's emitter points (the complement of the
+// points' weight above; 1 without points, 0 where directionPdf = 0: the points alone).
+float blEmitterHitWeight(vec3 emission, float directionPdf, float cosY, float r2) {
+    uint count = blEmitterPointHeader.count;
+    float points = float(count) * blEmitterAreaPdf(emission, blEmitterPointHeader.inversePower) * r2;
     float direction = directionPdf * cosY;
     return direction > 0.0 ? direction / (points + direction) : (count == 0u ? 1.0 : 0.0);
 }

@@ -15,6 +15,15 @@
 
 BL_NAMESPACE_BEGIN
 
+// The buffer EmitterPointPass uploads: this header, then `count` GpuEmitterPoint.
+struct GpuEmitterPointHeader {
+    uint count;         // points this iteration (0: none; the modes' estimates then leave them out)
+    uint resolution;    // texels per side of their shadow cubes' faces
+    float inversePower; // 1 / Phi (blEmitterAreaPdf)
+    uint pad;
+};
+BL_STATIC_ASSERT(sizeof(GpuEmitterPointHeader) == 16, "GpuEmitterPointHeader layout");
+
 struct GpuEmitterPoint {
     vec3 position;   // y, on the emitter
     float areaPdf;   // p_A(y), per unit area

@@ -15,6 +15,8 @@ BL_CONST uint kMultibounceBindingEmitters = 2u;   // storage MultibounceEmitter[
 BL_CONST uint kMultibounceBindingPoints = 3u;     // storage MultibouncePoint[] (imperfect bundles)
 BL_CONST uint kMultibounceBindingSplats = 4u;     // storage BundleSplat[] (imperfect bundles: the centres)
 BL_CONST uint kMultibounceBindingTextures = 5u;   // storage uint[]: packed albedo textures (shared/PackedTextures.h)
+BL_CONST uint kMultibounceBindingEmitterPoints = 6u;     // storage GpuEmitterPointHeader + GpuEmitterPoint[]
+BL_CONST uint kMultibounceBindingEmitterShadowMaps = 7u; // storage image 2D array (r32f), 6 layers per emitter point
 
 // MultibouncePush::flags.
 BL_CONST uint kMultibounceEnvironment = 1u; // the scene has an environment: escaping paths gather it
@@ -22,6 +24,9 @@ BL_CONST uint kMultibounceTextured = 2u;    // some material has an albedo textu
 BL_CONST uint kMultibounceSplatCentreUv = 4u; // imperfect bundles: the UV of the splat's centre for the whole
                                               // splat (splat_uv = centre, for comparison), not the UV at the hit
 BL_CONST uint kMultibounceDistinctBundles = 8u; // a path's bundles are drawn without replacement
+// emitter_sampling = points: the emitter points alone light each vertex (an emitter a bundle meets
+// after a bounce weighs 0); without this flag and with points, both strategies by MIS.
+BL_CONST uint kMultibounceEmitterPointsOnly = 16u;
                                                 // (independent random directions: MultibounceBundleWindow)
 
 // Emission of the triangles of one draw: triangle id t belongs to the last entry with

@@ -10,7 +10,10 @@
 // winding of the faces does not matter and thin walls do not leak. With random directions (and
 // any sequence when K <= 8) the bundles are drawn without replacement along a path (blMultibouncePickBundle): d is never the
 // direction the path arrived along, and a path that has used all K <= 8 bundles ends. At every vertex: emission when the path meets an emitter's front face, point/spot light
-// by cube shadow maps, the environment when the path escapes.
+// by cube shadow maps, the area emitters by this iteration's emitter points (gpu/EmitterPointLight.glsl),
+// the environment when the path escapes. Emitters are reached two ways after a bounce, by a bundle
+// and by an emitter point: the balance heuristic weighs the two (the bundle's density p_r(d) on
+// the hemisphere against M p_A(y)), and gives the points the whole path where no bundle is left.
 // Weights are f cos / p_r; Russian roulette after push.rrSegments segments. Textured albedo at every
 // vertex from the packed texture buffer (gpu/PackedTextureLookup.glsl: no descriptor indexing),
 // at the payload's UV (perfect bundles) or the splat's UV at the hit (imperfect bundles).
@@ -25,7 +28,11 @@
 #include "gpu/CameraSet.glsl"
 #define BL_SHADOW_SET kMultibounceSet
 #define BL_SHADOW_BINDING kMultibounceBindingShadowMaps
+#define BL_SHADOW_BINDING_2 kMultibounceBindingEmitterShadowMaps
 #include "gpu/ShadowCubeLookup.glsl"
+#define BL_EMITTER_POINTS_SET kMultibounceSet
+#define BL_EMITTER_POINTS_BINDING kMultibounceBindingEmitterPoints
+#include "gpu/EmitterPointLight.glsl"
 #define BL_PACKED_TEXTURES_SET kMultibounceSet
 #define BL_PACKED_TEXTURES_BINDING kMultibounceBindingTextures
 #include "gpu/PackedTextureLookup.glsl"
@@ -99,10 +106,16 @@ void tracePath(vec3 x0, uint own0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 e
     MultibounceBundleWindow window =
         blMultibounceBundleWindow(push.pool.slots, (push.flags & kMultibounceDistinctBundles) != 0u);
     // x was reached by `segments` segments; its emission is counted.
+    // The density the bundle strategy reaches an emitter with, for the MIS weights (0: the emitter
+    // points alone, emitter_sampling = points).
+    float bundlePdf = (push.flags & kMultibounceEmitterPointsOnly) != 0u ? 0.0 : push.hemispherePdf;
     for (uint segments = 1u; segments < push.maxSegments; ++segments) {
-        layers[layerOf(segments + 1u)] += throughput * directLight(x, n, m, albedo, wo);
+        bool bundleLeft = blMultibounceBundleLeft(window, push.pool.slots);
+        layers[layerOf(segments + 1u)] +=
+            throughput * (directLight(x, n, m, albedo, wo) +
+                          blEmitterPointsLight(x, n, m, albedo, wo, bundleLeft ? bundlePdf : 0.0));
 
-        if (!blMultibounceBundleLeft(window, push.pool.slots)) {
+        if (!bundleLeft) {
             break; // every one of K <= 8 bundles drawn: no direction independent of the path's is left
         }
         vec2 u = blRandom2(rng);
@@ -146,6 +159,7 @@ void tracePath(vec3 x0, uint own0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 e
         // pixel's centre ray (up to half a pixel beside it): where that plane is not the surface
         // x's ray meets (edges, curvature within the pixel), the bundle-resolution bias, which
         // shrinks with the pixel size. The payload (normal, UV) is the centre ray's.
+        float distance = abs(crossing - depth);
         x += (crossing - depth) * frame.direction;
         wo = -d;
         m = materials[payload.material & kBundleHitMaterialMask];
@@ -174,7 +188,12 @@ void tracePath(vec3 x0, uint own0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 e
         vec3 shading = blUnpackOctahedral(packedNormal);
         n = dot(shading, wo) >= 0.0 ? shading : -shading; // two-sided reflection
         if (blBundleFacesBack(node.next, side)) {
-            layers[layerOf(segments + 1u)] += throughput * emissionOf(triangle); // front faces emit
+            // Front faces emit; weighed against the emitter points that reach the same point. The
+            // cosine at the emitter is its shading normal's (its geometric one for flat emitters, as
+            // the points use).
+            vec3 emission = emissionOf(triangle);
+            float weight = blEmitterHitWeight(emission, bundlePdf, abs(dot(shading, wo)), distance * distance);
+            layers[layerOf(segments + 1u)] += throughput * emission * weight;
         }
     }
 }

@@ -13,10 +13,8 @@ struct RasterPush {
     vec2 samplePosition;       // sub-pixel position of this iteration's sample, in [0, 1)^2
     uint width;
     uint height;
-    uint emitterPointCount;       // this iteration's points on the area emitters (0: none)
-    uint emitterShadowResolution; // texels per side of their cube faces
 };
-BL_STATIC_ASSERT(sizeof(RasterPush) == 40, "RasterPush layout");
+BL_STATIC_ASSERT(sizeof(RasterPush) == 32, "RasterPush layout");
 
 // Layers the raster mode writes: visible emitters and the environment (1 segment), direct light
 // from point and spot lights and area emitters (2 segments).

@@ -70,8 +70,7 @@ void main() {
     layers[kPathEmitted] = imageLoad(gbuffer[kGBufferEmission], pixel).rgb;
     GpuMaterial material = materials[uint(normalMaterial.w)];
     layers[kPathDirect] = directLight(position, normalMaterial.xyz, material, albedo) +
-                          blEmitterPointsLight(push.emitterPointCount, push.emitterShadowResolution, position,
-                                               normalMaterial.xyz, material, albedo,
+                          blEmitterPointsLight(position, normalMaterial.xyz, material, albedo,
                                                normalize(camera.position - position), 0.0);
     blAccumulate(pixel, layers);
 }

@@ -196,8 +196,8 @@ constexpr double kDimRegion = 0.25;
 
 } // namespace
 
-// The Cornell box and its area light: every light path reaches the light through the bundles
-// (no next-event estimation for area lights). Layer by layer against the reference: a layer of k
+// The Cornell box and its area light, emitter_sampling = bundles: every light path reaches the
+// light through the bundles (no next-event estimation for area lights, as [TO12]). Layer by layer against the reference: a layer of k
 // bundle segments within k f (direct 1, indirect1 2, indirect2 3, rest kRestSegments + 1; the
 // emitted layer needs none); the image within those bounds weighted by the reference's layers.
 // The direct layer alone is not tested: its seeds spread 3.4-4.4% (a heavy tail: the small light is
@@ -207,7 +207,7 @@ constexpr double kDimRegion = 0.25;
 // path's light: so k f bounds a layer's relative bias.
 TEST_F(Multibounce, CornellAreaLightMatchesReference) {
     Scene s = loadSmall("data/cornell-box/cornell.toml", kStatResolution);
-    const std::vector<ImageSet> runs = renderSeeds(s, 16, {"paths_per_pixel=16"});
+    const std::vector<ImageSet> runs = renderSeeds(s, 16, {"paths_per_pixel=16", "emitter_sampling=bundles"});
     const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
     const double f = bundleMisassignment(s, kBundleResolution);
     const std::vector<std::pair<std::string, double>> bounds{
