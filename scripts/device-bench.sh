@@ -92,10 +92,12 @@ else
     configs=(
         "raster cornell $cornell 8"
         "raster sponza $sponza 8"
+        "raster cornell-area $cornell_area 8"
         "bidir cornell $cornell 4"
         "bidir sponza $sponza 4"
         "multibounce cornell $cornell 4"
         "multibounce sponza $sponza 2"
+        "multibounce cornell-area $cornell_area 4"
         "atlas cornell $cornell 16"
         "atlas sponza $sponza 8"
         "skylight bunny-envmap $bunny_env 16"
@@ -149,7 +151,7 @@ done
 step 100
 # 3. Equal time against the path tracer (the runner; one GPU task at a time, the path tracer on all cores).
 if ((quick)); then
-    seconds=0.5 spp=16 resolution=16 mb="bundle_count = 2, paths_per_pixel = 1, bundle_resolution = 32"
+    seconds=0.5 spp=16 resolution=16 mb="bundle_count = 2, paths_per_pixel = 1, bundle_resolution = 32" bundles_only=""
     bd="pairs_per_frame = 2, bundle_resolution = 32, shadow_resolution = 64, vpl_shadow_resolution = 16, rsm_resolution = 16"
     at="atlas_resolution = 32, bundle_resolution = 32, shadow_resolution = 64, view_samples = 1"
     scenes="[[scene]]
@@ -158,6 +160,13 @@ file = \"$cornell\"
 resolution = [$resolution, $resolution]"
 else
     seconds=6 spp=1024 resolution=128 mb="" bd="" at=""
+    # multibounce's area emitters by bundle hits alone ([TO12]) beside its default MIS with emitter points.
+    bundles_only="[[mode]]
+mode     = \"multibounce\"
+label    = \"multibounce-bundles\"
+scenes   = [\"cornell-area\"]
+settings = { emitter_sampling = \"bundles\" }
+"
     scenes="[[scene]]
 name = \"cornell-point\"
 file = \"$cornell\"
@@ -190,6 +199,7 @@ label = "path-tracer"
 mode     = "multibounce"
 settings = { $mb }
 
+$bundles_only
 [[mode]]
 mode      = "reference"
 label     = "path-tracer-4"
