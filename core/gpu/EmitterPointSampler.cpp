@@ -29,7 +29,10 @@ EmitterPointSampler::EmitterPointSampler(const Scene& scene) : mScene(&scene) {
             const float area = 0.5f * glm::length(glm::cross(mesh.positions[tri.y] - a, mesh.positions[tri.z] - a));
             if (area > 0.0f && std::isfinite(area)) {
                 mTriangles.push_back({m, t});
-                power.push_back(meanRadiance(mesh.emission) * area);
+                // A non-finite radiance (never from a file: the loaders refuse it) draws by area, so
+                // its infinite samples reach the image's lost-work count instead of a throw here.
+                const float weight = meanRadiance(mesh.emission) * area;
+                power.push_back(std::isfinite(weight) ? weight : area);
             }
         }
     }
