@@ -70,8 +70,9 @@ struct TradeSettings {
     bool lobesByBundleDirections = false; // glossy lobes are met only by uniform bundle directions
     bool bundlesOnlyForEnvironment = false; // the mode builds bundles only for an environment's light
     // A setting that ends the mode's paths early (multibounce: bundle_count <= 8 cuts a path at
-    // K + 2 segments with point and spot lights' direct light, K + 1 where it meets an emitter or
-    // the sky): its key and value, the longest path kept from point lights and from emitters, the
+    // K + 2 segments with point and spot lights' direct light and emitter points, K + 1 where it
+    // meets an emitter by a bundle alone or the sky): its key and value, the longest path kept from
+    // point lights, from emitters and from the sky, the
     // length the mode keeps without the cut (its max_segments), the value from which none is cut
     // (each unit of the value below it keeps one segment more) and the value to suggest when none
     // below that brings the cut under the tolerance. Empty key: no path is cut.
@@ -79,6 +80,7 @@ struct TradeSettings {
     std::uint32_t pathValue = 0;
     std::uint32_t pathSegments = 0;
     std::uint32_t pathSegmentsToEmitters = 0;
+    std::uint32_t pathSegmentsToSky = 0;
     std::uint32_t pathUncut = 0;
     std::uint32_t pathUncutFrom = 0;
     std::uint32_t pathSuggested = 0;

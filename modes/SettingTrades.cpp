@@ -391,11 +391,20 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
 
     if (!t.pathKey.empty() && t.pathSegments > 0) {
         // The cut itself and, for the fix, one segment more per unit of the setting up to the
-        // value that cuts nothing. Where emitters or the sky light the scene, the shorter cut of
-        // paths that end on them: exact for those, an overstatement for point lights' paths.
+        // value that cuts nothing. Where emitters or the sky light the scene with a shorter cut
+        // than point lights, that cut: exact for their paths, an overstatement for the others.
         const SceneFeatures f = scene.features();
-        const bool emitters = f.emissiveTriangles > 0 || f.environment;
-        const std::uint32_t segments = emitters ? t.pathSegmentsToEmitters : t.pathSegments;
+        std::uint32_t segments = t.pathSegments;
+        std::string shorter; // what ends paths sooner than point lights do
+        if (f.emissiveTriangles > 0 && t.pathSegmentsToEmitters < segments) {
+            segments = t.pathSegmentsToEmitters;
+            shorter = "an emitter";
+        }
+        if (f.environment && t.pathSegmentsToSky < t.pathSegments) {
+            shorter = shorter.empty() || t.pathSegmentsToSky < segments ? std::string("the sky") : shorter + " or the sky";
+            segments = std::min(segments, t.pathSegmentsToSky);
+        }
+        const bool emitters = !shorter.empty();
         std::vector<std::uint32_t> cuts;
         for (std::uint32_t v = t.pathValue; v < t.pathUncutFrom && segments + (v - t.pathValue) < t.pathUncut; ++v)
             cuts.push_back(segments + (v - t.pathValue));
@@ -410,7 +419,7 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
                 fix = "fix: " + t.pathKey + "=" + std::to_string(t.pathSuggested) + " or more (no path cut)";
             out.push_back(name + ": " + t.pathKey + "=" + std::to_string(t.pathValue) + " ends every path after " +
                           std::to_string(segments) + " segments" +
-                          (emitters ? " where it meets an emitter or the sky (" + std::to_string(t.pathSegments) +
+                          (emitters ? " where it meets " + shorter + " (" + std::to_string(t.pathSegments) +
                                           " with point and spot lights)"
                                     : std::string()) +
                           ", which leaves out " + describe(errors.front()) +

@@ -1,27 +1,33 @@
 #include "gpu/EmitterPointSampler.h"
 
+#include "base/Error.h"
+
 #include <shared/Random.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 
 namespace bl::gpu {
 
 namespace {
 constexpr std::uint32_t kEmitterStreamKey = 0x27d4eb2fu; // independent of every other stream's key
 
-float meanRadiance(const glm::vec3& emission) { return (emission.x + emission.y + emission.z) / 3.0f; }
-
 glm::vec3 transformPoint(const glm::mat4& m, const glm::vec3& p) { return glm::vec3(m * glm::vec4(p, 1.0f)); }
 } // namespace
 
 EmitterPointSampler::EmitterPointSampler(const Scene& scene) : mScene(&scene) {
-    std::vector<float> power;
+    std::vector<double> power;
+    std::vector<float> areas;
+    bool finiteRadiance = true;
     for (std::uint32_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
         if (!mesh.emissive()) {
             continue;
         }
+        const float mean = shader::blEmitterMeanRadiance(mesh.emission);
+        finiteRadiance = finiteRadiance && std::isfinite(mean);
         for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
             const glm::uvec3 tri = mesh.triangles[t];
             const glm::vec3 a = mesh.positions[tri.x];
@@ -29,18 +35,35 @@ EmitterPointSampler::EmitterPointSampler(const Scene& scene) : mScene(&scene) {
             const float area = 0.5f * glm::length(glm::cross(mesh.positions[tri.y] - a, mesh.positions[tri.z] - a));
             if (area > 0.0f && std::isfinite(area)) {
                 mTriangles.push_back({m, t});
-                // A non-finite radiance (never from a file: the loaders refuse it) draws by area, so
-                // its infinite samples reach the image's lost-work count instead of a throw here.
-                const float weight = meanRadiance(mesh.emission) * area;
-                power.push_back(std::isfinite(weight) ? weight : area);
+                power.push_back(double(mean) * area);
+                areas.push_back(area);
             }
         }
     }
-    mByPower = Distribution1D(power);
-    if (mByPower.empty()) {
-        mTriangles.clear();
+    if (mTriangles.empty()) {
         return;
     }
+    if (!finiteRadiance) {
+        // A non-finite radiance (never from a file: the loaders refuse it) is drawn by area, so its
+        // infinite samples reach the image's lost-work count instead of a throw here.
+        mByPower = Distribution1D(areas);
+        mInversePower = static_cast<float>(1.0 / mByPower.total());
+        return;
+    }
+    // p_A = mean(L_e) / Phi on the GPU needs each power, Phi and 1 / Phi as normal floats: a
+    // radiance near FLT_MAX over a few units of area (or a vanishing one) would turn every point's
+    // light into 0, infinity or NaN. Refused, naming the power.
+    double total = 0.0;
+    for (double p : power) total += p;
+    constexpr double kMax = std::numeric_limits<float>::max();
+    if (!(total < kMax) || !(1.0 / total < kMax)) {
+        char value[32];
+        std::snprintf(value, sizeof(value), "%.3g", total);
+        throw Error("emitter points: the emitters' power (mean radiance x area, summed over " +
+                    std::to_string(mTriangles.size()) + " triangles) is " + value +
+                    ", beyond what a float represents; scale the scene's emission (the images are linear in it)");
+    }
+    mByPower = Distribution1D(std::vector<float>(power.begin(), power.end()));
     mInversePower = static_cast<float>(1.0 / mByPower.total());
 }
 

@@ -68,7 +68,7 @@ std::vector<ParamSpec> MultibounceMode::parameters() {
          0, 0, {"mis", "bundles", "points"}},
         {kEmitterPoints, std::int64_t{16}, "points",
          "points drawn on the area emitters per iteration, by power, each shadowed by a cube (emitter_sampling mis, points)",
-         1, 1024, {}},
+         1, 256, {}},
         {kEmitterShadowResolution, std::int64_t{256}, "texels", "side of each emitter point's shadow cube face", 16,
          4096, {}},
     };
@@ -371,15 +371,17 @@ PassTimes MultibounceMode::timings() const { return mGpu ? mGpu->timer.totals() 
 TradeSettings MultibounceMode::trades() const {
     TradeSettings t = tradeSettingsOf(mSettings, kShadowResolution, kBundleResolution);
     // A path draws each of K <= 8 bundles once: it ends after K bundle segments and the direct
-    // light at their last vertex, K + 2 segments in all; emitters and the sky are met only at the
-    // end of a bundle segment, K + 1 at most (shaders/modes/multibounce/paths.comp.glsl).
+    // light at their last vertex, K + 2 segments in all, emitters too where emitter points light
+    // that vertex; without them (emitter_sampling = bundles) emitters, and the sky always, are met
+    // only at the end of a bundle segment, K + 1 at most (shaders/modes/multibounce/paths.comp.glsl).
     const auto k = static_cast<std::uint32_t>(mSettings.getInt(kBundleCount));
     const auto longest = static_cast<std::uint32_t>(mSettings.getInt(kMaxSegments));
     if (distinctBundles() && k <= shader::kMultibounceRecentBundles && k + 2u < longest) {
         t.pathKey = kBundleCount;
         t.pathValue = k;
         t.pathSegments = k + 2u;
-        t.pathSegmentsToEmitters = k + 1u;
+        t.pathSegmentsToEmitters = emitterPointCount() > 0 ? k + 2u : k + 1u;
+        t.pathSegmentsToSky = k + 1u;
         t.pathUncut = longest;
         t.pathUncutFrom = shader::kMultibounceRecentBundles + 1u;
         // K = 9..15 cut nothing but leave a path K - 8 bundles to draw from after 8 segments (K = 9:

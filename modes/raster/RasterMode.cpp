@@ -19,8 +19,9 @@ std::vector<ParamSpec> RasterMode::parameters() {
         {kShadowResolution, std::int64_t{1024}, "texels",
          "side of each shadow cube face ([TO12] used 1024^2 per face for direct light)", 16, 8192, {}},
         {kEmitterPoints, std::int64_t{16}, "points",
-         "points drawn on the area emitters per iteration, by power, each shadowed by a cube (0: area lights left out)",
-         0, 1024, {}},
+         "points drawn on the area emitters per iteration, by power, each shadowed by a cube (0: area lights left out; "
+         "at most 256: 6 layers each of one image, which devices hold to 2048 layers)",
+         0, 256, {}},
         {kEmitterShadowResolution, std::int64_t{256}, "texels", "side of each emitter point's shadow cube face", 16,
          4096, {}},
         {kJitter, true, "", "move the sample inside the pixel (box filter; seed 0 starts at the centre, other seeds shift the sequence)", 0, 1, {}},
@@ -78,7 +79,7 @@ std::vector<PlannedPass> RasterMode::plan(const Scene& scene) const {
         passes.push_back({"area light", false, "emitter_points = 0 leaves the area emitters out", true});
     }
     if (f.environment) {
-        passes.push_back({"environment light", false, "raster lights with point and spot lights only: use skylight, "
+        passes.push_back({"environment light", false, "raster lights with point, spot and area lights only: use skylight, "
                                                       "reference or multibounce", true});
     }
     return passes;

@@ -1,6 +1,6 @@
 // Points sampled on the scene's emissive triangles for next-event estimation on the GPU (the
 // "first shot" of issue 21): each iteration draws M points y_k by power and shadows them with
-// cube maps, like virtual point lights. Shared by the host sampler (core/gpu/EmitterPoints.h) and
+// cube maps, like virtual point lights. Shared by the host sampler (core/gpu/EmitterPointSampler.h) and
 // the shaders (shaders/gpu/EmitterPointLight.glsl).
 //
 // Density of a point (area measure): the triangle is chosen with probability P_i = Phi_i / Phi,
@@ -36,9 +36,14 @@ struct GpuEmitterPoint {
 };
 BL_STATIC_ASSERT(sizeof(GpuEmitterPoint) == 64, "GpuEmitterPoint layout");
 
+// mean(L_e): the channels' mean, each divided first so that no sum overflows a float.
+BL_INLINE float blEmitterMeanRadiance(vec3 emission) {
+    return emission.x * (1.0f / 3.0f) + emission.y * (1.0f / 3.0f) + emission.z * (1.0f / 3.0f);
+}
+
 // p_A of a point of radiance `emission`, given 1 / Phi (0 when the scene has no emitters).
 BL_INLINE float blEmitterAreaPdf(vec3 emission, float inversePower) {
-    return (emission.x + emission.y + emission.z) * (1.0f / 3.0f) * inversePower;
+    return blEmitterMeanRadiance(emission) * inversePower;
 }
 
 BL_NAMESPACE_END

@@ -24,10 +24,10 @@ BL_CONST uint kMultibounceTextured = 2u;    // some material has an albedo textu
 BL_CONST uint kMultibounceSplatCentreUv = 4u; // imperfect bundles: the UV of the splat's centre for the whole
                                               // splat (splat_uv = centre, for comparison), not the UV at the hit
 BL_CONST uint kMultibounceDistinctBundles = 8u; // a path's bundles are drawn without replacement
+                                                // (independent random directions: MultibounceBundleWindow)
 // emitter_sampling = points: the emitter points alone light each vertex (an emitter a bundle meets
 // after a bounce weighs 0); without this flag and with points, both strategies by MIS.
 BL_CONST uint kMultibounceEmitterPointsOnly = 16u;
-                                                // (independent random directions: MultibounceBundleWindow)
 
 // Emission of the triangles of one draw: triangle id t belongs to the last entry with
 // firstTriangle <= t (entries in GpuScene draw order, so firstTriangle ascends). Radiance of the

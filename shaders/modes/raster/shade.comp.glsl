@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Raster mode shading: emitted radiance of visible emitters, direct light from point and spot
-// lights and from this iteration's points on the area emitters with cube shadow maps (4x4 PCF),
+// lights (cube shadow maps, 4x4 PCF) and from this iteration's points on the area emitters (a cube
+// each, one tap: gpu/EmitterPointLight.glsl),
 // and the environment seen by rays that escape. Adds one
 // sample per pixel to the accumulator (emitted and direct layers).
 #include "modes/raster/RasterShared.h"
