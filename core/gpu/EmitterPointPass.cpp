@@ -25,8 +25,10 @@ EmitterPointPass::EmitterPointPass(const vk::Context& ctx, const GpuScene& gpuSc
     upload(); // a valid header (no points) until the first prepare()
 }
 
-void EmitterPointPass::prepare(std::uint32_t seed, std::uint32_t iteration, double time) {
-    mPoints = mSampler.sample(mRequested, seed, iteration, time, mLift);
+void EmitterPointPass::prepare(std::uint64_t seed, std::uint32_t iteration, double time) {
+    // Both halves of the run seed count: runs whose seeds differ only above bit 31 draw other points.
+    const auto folded = static_cast<std::uint32_t>(seed ^ (seed >> 32));
+    mPoints = mSampler.sample(mRequested, folded, iteration, time, mLift);
     upload();
 }
 

@@ -23,8 +23,8 @@ public:
     // Device memory the pass needs for `count` cubes of `resolution`^2 (for requireDeviceMemory).
     static VkDeviceSize bytesFor(std::uint32_t count, std::uint32_t resolution);
 
-    // Draws and uploads the points of (seed, iteration) at scene `time`; call before record().
-    void prepare(std::uint32_t seed, std::uint32_t iteration, double time);
+    // Draws and uploads the points of (run seed, iteration) at scene `time`; call before record().
+    void prepare(std::uint64_t seed, std::uint32_t iteration, double time);
     // Renders the prepared points' shadow cubes (timer scope "emitter points").
     void record(VkCommandBuffer cmd, double time, vk::GpuTimer* timer);
 

@@ -302,7 +302,7 @@ void MultibounceMode::iterate(const IterationInfo& info) {
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
     const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time, info.seed);
     const bool renderShadows = g.shadows->refreshFor(*mContext, *g.scene, info.time);
-    g.emitterPoints->prepare(static_cast<std::uint32_t>(info.seed ^ (info.seed >> 32)), mIterations, info.time);
+    g.emitterPoints->prepare(info.seed, mIterations, info.time);
     shader::MultibouncePush push{};
     push.pool = g.pool->view();
     push.width = width;

@@ -146,7 +146,7 @@ void RasterMode::iterate(const IterationInfo& info) {
     const std::uint32_t height = g.camera->height();
     const gpu::CameraSample sample = g.camera->sample(mIterations, mSettings.getBool(kJitter), info.time, info.seed);
     const bool renderShadows = g.shadows->refreshFor(*mContext, *g.scene, info.time);
-    g.emitterPoints->prepare(static_cast<std::uint32_t>(info.seed ^ (info.seed >> 32)), mIterations, info.time);
+    g.emitterPoints->prepare(info.seed, mIterations, info.time);
 
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
