@@ -34,13 +34,17 @@ shader::AtlasDirectPush AtlasMode::directPush() const {
 
 void AtlasMode::lightDirect(double time) {
     Gpu& g = *mGpu;
-    if (!g.shadows) {
+    if (!g.shadows && !g.firstShot) {
         return;
     }
+    // The texels' sample points: the point/spot lights' and the first shot's.
     const auto grid = static_cast<int>(mSettings.getInt(kLightSamples));
     const atlasmode::TexelSamples samples = atlasmode::buildTexelSamples(*mScene, g.atlas, g.link, grid, time);
     g.samples = vk::makeBuffer(*mContext, std::span<const shader::AtlasSample>(samples.samples), kStorage);
     g.firstSample = vk::makeBuffer(*mContext, std::span<const std::uint32_t>(samples.first), kStorage);
+    if (!g.shadows) {
+        return; // first shot only: the point/spot part of the direct atlas stays zero
+    }
     g.scene->setLightTime(*mContext, time); // keyframed lights where they are at this time
     shader::AtlasDirectPush push = directPush();
     push.direct = addressOf(*mContext, g.directRadiance);
@@ -80,6 +84,12 @@ void AtlasMode::lightDirect(double time) {
             recordDirect(cmd, cache, "glossy light cache", g.glossyTexelCount);
         }
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        if (g.firstShot) { // the shots add to the point/spot part, kept apart
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+            const VkBufferCopy all{0, 0, g.directRadiance.size()};
+            vkCmdCopyBuffer(cmd, g.directRadiance.get(), g.pointDirect.get(), 1, &all);
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        }
     });
     g.timer.collect();
 }

@@ -8,6 +8,7 @@
 #include "bundle/BundlePool.h"
 #include "bundle/DirectionSampler.h"
 #include "gpu/CameraPass.h"
+#include "gpu/EmitterPointPass.h"
 #include "gpu/ShadowCubePass.h"
 #include "modes/atlas/AtlasMode.h"
 #include "modes/atlas/AtlasTables.h"
@@ -60,6 +61,15 @@ struct AtlasMode::Gpu {
     vk::DescriptorSetLayout viewSetLayout, directSetLayout;
     vk::DescriptorPool descriptorPool;
     VkDescriptorSet viewSet = VK_NULL_HANDLE, directSet = VK_NULL_HANDLE;
+    // first_shot: the emitter points, the point/spot lights' part of the direct atlas kept apart
+    // and the running sum of the shots (vec4 per texel side each).
+    bool firstShot = false;
+    std::unique_ptr<gpu::EmitterPointPass> emitterPoints;
+    vk::Buffer pointDirect, shotSum;
+    vk::DescriptorSetLayout firstShotSetLayout;
+    VkDescriptorSet firstShotSet = VK_NULL_HANDLE;
+    vk::PipelineLayout firstShotLayout;
+    vk::Pipeline firstShotPipeline;
     atlas::AtlasLink link;
     vk::GpuTimer timer;
     Bounds bounds;

@@ -99,6 +99,13 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
                     " needs transfer=interleaved (bounce-by-bounce transfer sends direct light alone in its first "
                     "pass already)");
     }
+    if (mSettings.getBool(kFirstShot) &&
+        (mSettings.getString(kTransfer) == "bounce" || mSettings.getInt(kDelayIndirect) != 0 ||
+         (scene.features().glossy && mSettings.getString(kGlossy) != "off"))) {
+        throw Error("atlas: first_shot needs transfer=interleaved, delay_indirect=0 and no glossy transport (glossy=off "
+                    "or no glossy materials): the shot's light does not yet enter a fixed pass sender, the one-bounce "
+                    "channel or the glossy transfer atlas");
+    }
     mIndirectDirections = 0;
     mIndirectWeight = 0.0;
     mSolutionTime.reset();
@@ -221,7 +228,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->updateLayout = vk::makePipelineLayout(device, {}, sizeof(shader::AtlasUpdatePush), cs);
     g->update = vk::makeComputePipeline(device, kSpv_modes_atlas_update_comp, g->updateLayout.get());
     g->viewSetLayout = vk::makeDescriptorSetLayout(device, {{shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-    g->descriptorPool = vk::DescriptorPool(device, 2, 2);
+    g->descriptorPool = vk::DescriptorPool(device, 3, 3); // view, point lights, first shot
     g->viewSet = g->descriptorPool.allocate(g->viewSetLayout.get());
     if (!scene.lights.empty()) {
         g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
@@ -275,6 +282,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->shadeLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::AtlasShadePush), cs);
     g->shade = vk::makeComputePipeline(device, kSpv_modes_atlas_shade_comp, g->shadeLayout.get());
     mGpu = std::move(g);
+    setUpFirstShot(scene);
 }
 
 // Builds and sorts this direction's bundle; grows the pool and builds again when it did not fit,
@@ -419,6 +427,9 @@ void AtlasMode::iterate(const IterationInfo& info) {
     update.sumsIndirect = params.sumsIndirect;
     update.weightIndirect = float(weightIndirect);
     update.iteration = mIterations;
+    if (g.firstShot) {
+        g.emitterPoints->prepare(info.seed, mIterations, info.time);
+    }
     std::optional<WallSpan> wall(std::in_place, g.wallExchange);
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
@@ -429,6 +440,10 @@ void AtlasMode::iterate(const IterationInfo& info) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.update.get());
             vkCmdPushConstants(cmd, g.updateLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(init), &init);
             vkCmdDispatch(cmd, vk::groupCount(slots, shader::kAtlasGroupSize), 1, 1);
+        }
+        if (g.firstShot) { // after the init: the shot rewrites the records' constant part
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+            recordFirstShot(cmd, info.time);
         }
         vkCmdFillBuffer(cmd, g.touched.get(), 0, 2 * sizeof(std::uint32_t), 0u); // count, groups
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

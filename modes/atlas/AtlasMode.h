@@ -147,6 +147,9 @@ public:
     static constexpr const char* kMemoryCap = "memory_cap_mib";
     static constexpr const char* kGlossy = "glossy";
     static constexpr const char* kDelayIndirect = "delay_indirect";
+    static constexpr const char* kFirstShot = "first_shot";
+    static constexpr const char* kEmitterPoints = "emitter_points";
+    static constexpr const char* kEmitterShadowResolution = "emitter_shadow_resolution";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);
@@ -189,6 +192,11 @@ private:
     shader::AtlasDirectPush directPush() const;
     void recordGather(VkCommandBuffer cmd, double weight);
     void recordHighlight(VkCommandBuffer cmd);
+    // first_shot: the emitter points' pass and pipeline (set-up), and one iteration's shot: the
+    // points' cubes and their light into the direct atlas and the senders' constant part
+    // (AtlasFirstShot.cpp).
+    void setUpFirstShot(const Scene& scene);
+    void recordFirstShot(VkCommandBuffer cmd, double time);
     // The sampler index of the i-th direction processed (shuffled in blocks for the glossy
     // transfer, DirectionOrder.h; else i).
     std::uint32_t directionIndex(std::uint32_t i) const;

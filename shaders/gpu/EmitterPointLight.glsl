@@ -26,7 +26,9 @@ layout(set = BL_EMITTER_POINTS_SET, binding = BL_EMITTER_POINTS_BINDING) readonl
 // Folded into the estimate, L_e cos_x cos_y V / (r^2 M p_A) times that weight is
 //   L_e cos_x cos_y V / (M p_A r^2 + directionPdf cos_y),
 // which stays finite where either density vanishes.
-vec3 blEmitterPointsLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float directionPdf) {
+// reflect = false: the irradiance at x instead (f = 1, m, albedo and wo unused), for a caller that
+// applies its own reflectance (atlas texels: albedo / pi).
+vec3 blEmitterPointsSum(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float directionPdf, bool reflect) {
     uint count = blEmitterPointHeader.count;
     uint resolution = blEmitterPointHeader.resolution;
     vec3 radiance = vec3(0.0);
@@ -49,10 +51,20 @@ vec3 blEmitterPointsLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, f
         if (visibility <= 0.0) {
             continue;
         }
-        vec3 f = blEvalBrdf(m, albedo, n, wi, wo);
+        vec3 f = reflect ? blEvalBrdf(m, albedo, n, wi, wo) : vec3(1.0);
         radiance += f * p.emission * (cosX * cosY * visibility / (float(count) * p.areaPdf * r2 + directionPdf * cosY));
     }
     return radiance;
+}
+
+vec3 blEmitterPointsLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float directionPdf) {
+    return blEmitterPointsSum(x, n, m, albedo, wo, directionPdf, true);
+}
+
+// The irradiance the points give x on the side of n (no MIS: the points alone).
+vec3 blEmitterPointsIrradiance(vec3 x, vec3 n) {
+    GpuMaterial unused = GpuMaterial(vec3(0.0), 0u, vec3(0.0), 0.0, 0.0, 0u, 0u, 0u);
+    return blEmitterPointsSum(x, n, unused, vec3(0.0), n, 0.0, false);
 }
 
 // The weight of the direction strategy where it meets an emitter of radiance `emission` at

@@ -85,6 +85,27 @@ struct AtlasLightRecord {
     uint pad0;
 };
 BL_STATIC_ASSERT(sizeof(AtlasLightRecord) == 32, "AtlasLightRecord layout");
+// First shot (first_shot = true): each direction, the light of that iteration's emitter points
+// (gpu/EmitterPointPass.h) at every texel's sample points joins a running sum, and the direct atlas
+// becomes the point/spot lights' part + the sum's mean; the sender records' constant part is that,
+// without the emission, so the exchange carries reflected light only (first_shot.comp.glsl).
+struct AtlasFirstShotPush {
+    uvec2 samples;     // AtlasSample[] grouped by texel
+    uvec2 first;       // uint per texel + 1
+    uvec2 texels;      // AtlasTexel[]
+    uvec2 direct;      // vec4 per texel side: written, point/spot part + the shots' mean
+    uvec2 pointDirect; // vec4 per texel side: the point/spot lights' part (the direct pass's)
+    uvec2 shotSum;     // vec4 per texel side: the sum of the shots so far (written)
+    uvec2 senders;     // AtlasSenderRecord per texel side: `base` written
+    uint texelCount;
+    float inverseShots; // 1 / the shots summed after this one
+};
+BL_STATIC_ASSERT(sizeof(AtlasFirstShotPush) == 64, "AtlasFirstShotPush layout");
+BL_CONST uint kAtlasFirstShotSet = 0u;
+BL_CONST uint kAtlasFirstShotBindingPoints = 0u; // GpuEmitterPointHeader + GpuEmitterPoint[]
+BL_CONST uint kAtlasFirstShotBindingMaps = 1u;   // the points' cubes (map 0 of the lookup; unused)
+BL_CONST uint kAtlasFirstShotBindingMaps2 = 2u;  // the same image as map 1, which EmitterPointLight reads
+
 BL_CONST uint kAtlasDirectSet = 0u;
 BL_CONST uint kAtlasDirectBindingLights = 0u;     // GpuLight[] storage buffer
 BL_CONST uint kAtlasDirectBindingShadowMaps = 1u; // r32f 2D-array storage image (ShadowCubePass)

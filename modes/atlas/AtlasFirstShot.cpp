@@ -1,0 +1,75 @@
+// Mode atlas's first shot (first_shot = true): the area emitters' direct light by emitter points
+// (gpu/EmitterPointPass.h) into the direct atlas, a new set of points every direction, so the
+// exchange carries reflected light only (shaders/modes/atlas/first_shot.comp.glsl).
+#include "modes/atlas/AtlasGpu.h"
+
+#include "vk/Commands.h"
+
+#include <modes/atlas/AtlasShared.h>
+#include <modes/atlas/first_shot.comp.spv.h>
+
+namespace bl {
+
+using atlasmode::addressOf;
+using atlasmode::kStorage;
+
+void AtlasMode::setUpFirstShot(const Scene& scene) {
+    Gpu& g = *mGpu;
+    g.firstShot = mSettings.getBool(kFirstShot) && scene.features().emissiveMeshes;
+    if (!g.firstShot) {
+        return;
+    }
+    const auto points = static_cast<std::uint32_t>(mSettings.getInt(kEmitterPoints));
+    const auto side = static_cast<std::uint32_t>(mSettings.getInt(kEmitterShadowResolution));
+    mContext->requireDeviceMemory(gpu::EmitterPointPass::bytesFor(points, side) +
+                                      VkDeviceSize(g.texelCount) * shader::kAtlasSides * 2 * sizeof(glm::vec4),
+                                  "atlas first shot");
+    g.emitterPoints = std::make_unique<gpu::EmitterPointPass>(*mContext, *g.scene, scene, points, side);
+    const std::vector<glm::vec4> zero(std::size_t(shader::kAtlasSides) * g.texelCount);
+    g.pointDirect = vk::makeBuffer(*mContext, std::span<const glm::vec4>(zero), kStorage);
+    g.shotSum = vk::makeBuffer(*mContext, std::span<const glm::vec4>(zero), kStorage);
+
+    VkDevice device = mContext->device();
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    g.firstShotSetLayout = vk::makeDescriptorSetLayout(
+        device, {{shader::kAtlasFirstShotBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kAtlasFirstShotBindingMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
+                 {shader::kAtlasFirstShotBindingMaps2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
+    g.firstShotSet = g.descriptorPool.allocate(g.firstShotSetLayout.get());
+    vk::DescriptorWriter()
+        .buffer(shader::kAtlasFirstShotBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g.emitterPoints->buffer())
+        .image(shader::kAtlasFirstShotBindingMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g.emitterPoints->maps().view(),
+               VK_IMAGE_LAYOUT_GENERAL)
+        .image(shader::kAtlasFirstShotBindingMaps2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g.emitterPoints->maps().view(),
+               VK_IMAGE_LAYOUT_GENERAL)
+        .update(device, g.firstShotSet);
+    VkDescriptorSetLayout layouts[] = {g.firstShotSetLayout.get()};
+    g.firstShotLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::AtlasFirstShotPush), cs);
+    g.firstShotPipeline = vk::makeComputePipeline(device, kSpv_modes_atlas_first_shot_comp, g.firstShotLayout.get());
+}
+
+void AtlasMode::recordFirstShot(VkCommandBuffer cmd, double time) {
+    Gpu& g = *mGpu;
+    g.emitterPoints->record(cmd, time, &g.timer);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    shader::AtlasFirstShotPush push{};
+    push.samples = addressOf(*mContext, g.samples);
+    push.first = addressOf(*mContext, g.firstSample);
+    push.texels = addressOf(*mContext, g.texels);
+    push.direct = addressOf(*mContext, g.directRadiance);
+    push.pointDirect = addressOf(*mContext, g.pointDirect);
+    push.shotSum = addressOf(*mContext, g.shotSum);
+    push.senders = addressOf(*mContext, g.senders);
+    push.texelCount = g.texelCount;
+    push.inverseShots = 1.0f / float(mIterations + 1);
+    const std::uint32_t scope = g.timer.start(cmd, "first shot");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.firstShotPipeline.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.firstShotLayout.get(), 0, 1, &g.firstShotSet, 0,
+                            nullptr);
+    vkCmdPushConstants(cmd, g.firstShotLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, vk::groupCount(g.texelCount, shader::kAtlasGroupSize), 1, 1);
+    g.timer.stop(cmd, scope);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+}
+
+} // namespace bl
