@@ -151,7 +151,7 @@ done
 step 100
 # 3. Equal time against the path tracer (the runner; one GPU task at a time, the path tracer on all cores).
 if ((quick)); then
-    seconds=0.5 spp=16 resolution=16 mb="bundle_count = 2, paths_per_pixel = 1, bundle_resolution = 32" bundles_only=""
+    seconds=0.5 spp=16 resolution=16 mb="bundle_count = 2, paths_per_pixel = 1, bundle_resolution = 32" area_variants=""
     bd="pairs_per_frame = 2, bundle_resolution = 32, shadow_resolution = 64, vpl_shadow_resolution = 16, rsm_resolution = 16"
     at="atlas_resolution = 32, bundle_resolution = 32, shadow_resolution = 64, view_samples = 1"
     scenes="[[scene]]
@@ -160,12 +160,19 @@ file = \"$cornell\"
 resolution = [$resolution, $resolution]"
 else
     seconds=6 spp=1024 resolution=128 mb="" bd="" at=""
-    # multibounce's area emitters by bundle hits alone ([TO12]) beside its default MIS with emitter points.
-    bundles_only="[[mode]]
+    # On the area-lit box: multibounce's emitters by bundle hits alone ([TO12]) beside its default MIS
+    # with emitter points, and atlas with its first shot beside its default exchange.
+    area_variants="[[mode]]
 mode     = \"multibounce\"
 label    = \"multibounce-bundles\"
 scenes   = [\"cornell-area\"]
 settings = { emitter_sampling = \"bundles\" }
+
+[[mode]]
+mode     = \"atlas\"
+label    = \"atlas-first-shot\"
+scenes   = [\"cornell-area\"]
+settings = { first_shot = true }
 "
     scenes="[[scene]]
 name = \"cornell-point\"
@@ -199,7 +206,7 @@ label = "path-tracer"
 mode     = "multibounce"
 settings = { $mb }
 
-$bundles_only
+$area_variants
 [[mode]]
 mode      = "reference"
 label     = "path-tracer-4"
