@@ -1,8 +1,29 @@
 #include "vk/Descriptors.h"
 
+#include "base/Error.h"
 #include "vk/Check.h"
 
+#include <mutex>
+#include <string>
+#include <unordered_map>
+
 namespace bl::vk {
+
+namespace {
+using TypeCounts = std::map<VkDescriptorType, std::uint32_t>;
+
+// Each layout's descriptor counts by type, for the pools' own accounting (a layout handle does not
+// tell them). A destroyed layout's handle value may come back for a new layout, which overwrites it.
+struct LayoutCounts {
+    std::mutex mutex;
+    std::unordered_map<VkDescriptorSetLayout, TypeCounts> counts;
+};
+
+LayoutCounts& layoutCounts() {
+    static LayoutCounts registry;
+    return registry;
+}
+} // namespace
 
 DescriptorSetLayout makeDescriptorSetLayout(VkDevice device, std::initializer_list<Binding> bindings) {
     std::vector<VkDescriptorSetLayoutBinding> list;
@@ -14,6 +35,11 @@ DescriptorSetLayout makeDescriptorSetLayout(VkDevice device, std::initializer_li
     info.pBindings = list.data();
     VkDescriptorSetLayout raw = VK_NULL_HANDLE;
     BL_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, &raw));
+    TypeCounts counts;
+    for (const Binding& b : bindings) counts[b.type] += b.count;
+    LayoutCounts& registry = layoutCounts();
+    const std::lock_guard lock(registry.mutex);
+    registry.counts[raw] = std::move(counts);
     return DescriptorSetLayout(device, raw);
 }
 
@@ -32,15 +58,40 @@ DescriptorPool::DescriptorPool(VkDevice device, std::uint32_t maxSets, std::uint
     VkDescriptorPool raw = VK_NULL_HANDLE;
     BL_VK_CHECK(vkCreateDescriptorPool(device, &info, nullptr, &raw));
     mPool = DescriptorPoolHandle(device, raw);
+    mMaxSets = maxSets;
+    mSetsLeft = maxSets;
+    mPerType = perType;
+    for (const VkDescriptorPoolSize& size : sizes) mLeft[size.type] = size.descriptorCount;
 }
 
 VkDescriptorSet DescriptorPool::allocate(VkDescriptorSetLayout layout) {
+    if (mSetsLeft == 0) {
+        throw Error("descriptor pool: all " + std::to_string(mMaxSets) + " sets handed out; size the pool for every set it holds");
+    }
+    TypeCounts needs;
+    {
+        LayoutCounts& registry = layoutCounts();
+        const std::lock_guard lock(registry.mutex);
+        const auto found = registry.counts.find(layout);
+        if (found != registry.counts.end()) needs = found->second;
+    }
+    for (const auto& [type, count] : needs) {
+        const std::uint32_t left = mLeft.count(type) ? mLeft.at(type) : 0;
+        if (count > left) {
+            throw Error("descriptor pool: a set needs " + std::to_string(count) + " descriptor(s) of type " +
+                        std::to_string(int(type)) + ", the pool has " + std::to_string(left) + " left of " +
+                        std::to_string(mLeft.count(type) ? mPerType : 0) +
+                        "; size the pool for every set it holds");
+        }
+    }
     VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     info.descriptorPool = mPool.get();
     info.descriptorSetCount = 1;
     info.pSetLayouts = &layout;
     VkDescriptorSet set = VK_NULL_HANDLE;
     BL_VK_CHECK(vkAllocateDescriptorSets(mPool.device(), &info, &set));
+    --mSetsLeft;
+    for (const auto& [type, count] : needs) mLeft[type] -= count;
     return set;
 }
 

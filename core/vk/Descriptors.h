@@ -5,6 +5,7 @@
 
 #include <deque>
 #include <initializer_list>
+#include <map>
 #include <vector>
 
 namespace bl::vk {
@@ -23,10 +24,17 @@ public:
     DescriptorPool() = default;
     // Room for `maxSets` sets with up to `perType` descriptors of each common type.
     DescriptorPool(VkDevice device, std::uint32_t maxSets, std::uint32_t perType);
+    // A set of `layout` (made by makeDescriptorSetLayout). The pool counts what it hands out and
+    // throws when a set would overdraw it: Vulkan lets a driver allocate past a pool's sizes (lavapipe
+    // does) or fail, so an undersized pool would otherwise fail only on some devices.
     VkDescriptorSet allocate(VkDescriptorSetLayout layout);
 
 private:
     DescriptorPoolHandle mPool;
+    std::uint32_t mMaxSets = 0;
+    std::uint32_t mSetsLeft = 0;
+    std::uint32_t mPerType = 0;
+    std::map<VkDescriptorType, std::uint32_t> mLeft;
 };
 
 class DescriptorWriter {

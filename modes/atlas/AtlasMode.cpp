@@ -99,7 +99,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
                     " needs transfer=interleaved (bounce-by-bounce transfer sends direct light alone in its first "
                     "pass already)");
     }
-    if (mSettings.getBool(kFirstShot) &&
+    if (mSettings.getBool(kFirstShot) && scene.features().emissiveMeshes &&
         (mSettings.getString(kTransfer) == "bounce" || mSettings.getInt(kDelayIndirect) != 0 ||
          (scene.features().glossy && mSettings.getString(kGlossy) != "off"))) {
         throw Error("atlas: first_shot needs transfer=interleaved, delay_indirect=0 and no glossy transport (glossy=off "
@@ -228,7 +228,9 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->updateLayout = vk::makePipelineLayout(device, {}, sizeof(shader::AtlasUpdatePush), cs);
     g->update = vk::makeComputePipeline(device, kSpv_modes_atlas_update_comp, g->updateLayout.get());
     g->viewSetLayout = vk::makeDescriptorSetLayout(device, {{shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-    g->descriptorPool = vk::DescriptorPool(device, 3, 3); // view, point lights, first shot
+    // Three sets (view, point lights, first shot); the most of one type is the storage images: the
+    // view, the point lights' shadow cubes and the first shot's two bindings of its cubes.
+    g->descriptorPool = vk::DescriptorPool(device, 3, 4);
     g->viewSet = g->descriptorPool.allocate(g->viewSetLayout.get());
     if (!scene.lights.empty()) {
         g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));

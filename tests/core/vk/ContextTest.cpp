@@ -81,6 +81,23 @@ TEST_F(VkCore, BufferRoundTrip) {
               std::string::npos);
 }
 
+// A pool counts what it hands out: a set it has no room for is refused with the counts named on
+// every device (lavapipe itself would allocate past the pool's sizes).
+TEST_F(VkCore, DescriptorPoolRefusesSetsItHasNoRoomFor) {
+    VkDevice d = ctx().device();
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    vk::DescriptorSetLayout two = vk::makeDescriptorSetLayout(
+        d, {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}, {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
+    vk::DescriptorSetLayout one = vk::makeDescriptorSetLayout(d, {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
+    vk::DescriptorPool pool(d, 2, 2);
+    pool.allocate(two.get());
+    EXPECT_NE(errorOf([&] { pool.allocate(one.get()); }).find("needs 1 descriptor(s) of type 3, the pool has 0 left of 2"),
+              std::string::npos);
+    vk::DescriptorPool sets(d, 1, 4);
+    sets.allocate(one.get());
+    EXPECT_NE(errorOf([&] { sets.allocate(one.get()); }).find("all 1 sets handed out"), std::string::npos);
+}
+
 TEST_F(VkCore, ComputeDispatchAndTimer) {
     const std::uint32_t n = 4097;
     std::vector<float> input(n);

@@ -244,6 +244,37 @@ TEST_F(Atlas, FirstShotRefusesTransfersItDoesNotFeed) {
     }
 }
 
+// A scene lit by both an area emitter and a point light: the first shot's light adds to the point
+// light's in the direct atlas (the shot writes only the area part), and a point-lit scene without
+// emitters takes first_shot with a transfer the shot could not feed (there is no shot). Same seed
+// on every side, so the emitter points, the directions and the shadow cubes are the same and the
+// direct layers add up to float rounding. Mutations: the shot overwriting the point lights' part
+// (both = area only), a descriptor pool one storage image short (the set of the both-lit scene
+// fails to allocate).
+TEST_F(Atlas, FirstShotAddsToPointLights) {
+    Scene areaOnly = loadSmall("data/cornell-box/cornell.toml", 16);
+    Light point;
+    point.position = {278.0f, 400.0f, 279.5f};
+    point.intensity = glm::vec3(20000.0f);
+    Scene both = areaOnly;
+    both.lights.push_back(point);
+    Scene pointOnly = both;
+    for (Mesh& m : pointOnly.meshes) m.emission = glm::vec3(0.0f);
+    const std::vector<std::string> settings{"atlas_resolution=32", "bundle_resolution=32", "first_shot=true"};
+    const auto directMean = [&](const Scene& s) {
+        const ImageSet out = run(s, 4, settings)->resolve();
+        EXPECT_EQ(out.nonFiniteSamples, 0u);
+        return lumaMean(bl::test::layerOf(out, "direct"));
+    };
+    const double a = directMean(areaOnly), p = directMean(pointOnly), ab = directMean(both);
+    std::printf("direct: area %.6g + point %.6g = %.6g, both lit %.6g\n", a, p, a + p, ab);
+    EXPECT_GT(a, 0.1 * p);
+    EXPECT_GT(p, 0.1 * a);
+    EXPECT_NEAR(ab, a + p, 1e-4 * (a + p));
+    std::unique_ptr<Mode> bounce = createMode("atlas", {"first_shot=true", "transfer=bounce"});
+    EXPECT_NO_THROW(bounce->setScene(pointOnly, &ctx()));
+}
+
 // Delayed indirect light on the Cornell box (area light): with delay_indirect the one-bounce
 // estimate is light of two segments and goes to layer `direct`, the multi-bounce estimate to
 // `rest`, so each is checked against its own reference layer (direct; indirect1 + indirect2 +
