@@ -107,6 +107,7 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<BrdfCase>& p) { return std::string(p.param.name); });
 
 TEST(EnvironmentChi2, LuminanceSamplingMatchesDensity) {
+    BL_SKIP_WITHOUT_SHARED("data/envmap/classroom-sky.hdr");
     Environment env;
     env.present = true;
     env.map = readImage(sharedPath("data/envmap/classroom-sky.hdr"));
@@ -122,6 +123,7 @@ TEST(EnvironmentChi2, LuminanceSamplingMatchesDensity) {
 }
 
 TEST(EnvironmentChi2, SampledDensityMatchesPdfFunction) {
+    BL_SKIP_WITHOUT_SHARED("data/envmap/vogl-probe.hdr");
     Environment env;
     env.present = true;
     env.map = readImage(sharedPath("data/envmap/vogl-probe.hdr"));

@@ -166,6 +166,7 @@ TEST(AtlasLink, CornellBox) {
 }
 
 TEST(AtlasLink, TexturedTeapotOnPages) {
+    BL_SKIP_WITHOUT_SHARED("data/glossy/teapot/teapot.obj");
     Scene s = loadScene(bl::test::sharedPath("data/glossy/teapot/teapot.obj"));
     ASSERT_FALSE(s.textures.empty());
     AtlasOptions o;

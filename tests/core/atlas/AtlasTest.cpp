@@ -132,6 +132,7 @@ TEST(Atlas, FixedDensitySpillsOntoPages) {
 }
 
 TEST(Atlas, ScannedBunny) {
+    BL_SKIP_WITHOUT_SHARED("data/bunny/stanford/bun_zipper_res2.ply");
     Scene s = loadScene(bl::test::sharedPath("data/bunny/stanford/bun_zipper_res2.ply"));
     AtlasOptions o;
     o.size = 1024;
@@ -145,6 +146,8 @@ TEST(Atlas, ScannedBunny) {
 // experiments/bench/atlas.sh): utilization >= 0.70, no flips, overlaps or uncovered triangles,
 // stretch <= 2.
 TEST(Atlas, TargetsOnTheFullScans) {
+    BL_SKIP_WITHOUT_SHARED("data/bunny/stanford/bun_zipper.ply");
+    BL_SKIP_WITHOUT_SHARED("data/dragon/dragon_43k_ascii.ply");
     for (const char* path : {"data/bunny/stanford/bun_zipper.ply", "data/dragon/dragon_43k_ascii.ply"}) {
         SCOPED_TRACE(path);
         Scene s = loadScene(bl::test::sharedPath(path));

@@ -64,6 +64,7 @@ Seams measureSeams(const Mesh& mesh, const std::vector<ChartFaces>& charts) {
 } // namespace
 
 TEST(Charting, EveryFaceInExactlyOneChartWithinTheCone) {
+    BL_SKIP_WITHOUT_SHARED("data/bunny/stanford/bun_zipper_res2.ply");
     const Mesh& mesh = scannedBunny();
     for (float seamWeight : {0.0f, 1.0f, 2.0f, 5.0f}) {
         ChartingStats stats;
@@ -95,6 +96,7 @@ TEST(Charting, EveryFaceInExactlyOneChartWithinTheCone) {
 
 TEST(Charting, SeamCostGivesRounderChartsWithShorterSeams) {
     // Measured on this scan (cone 45): seams 7.56 -> 6.99, compactness 0.166 -> 0.307.
+    BL_SKIP_WITHOUT_SHARED("data/bunny/stanford/bun_zipper_res2.ply");
     const Mesh& mesh = scannedBunny();
     ChartingStats stats;
     const Seams coneOnly = measureSeams(mesh, growCharts(mesh, 0, ChartingOptions{45.0f, 0.0f}, stats));

@@ -121,12 +121,19 @@ protected:
 TEST_F(BundleExactness, CornellBox) { checkScene(bl::test::sourcePath("data/cornell-box/cornell.toml"), 256, 6); }
 
 TEST_F(BundleExactness, McGuireCornellWithCoplanarDuplicates) {
+    BL_SKIP_WITHOUT_SHARED("data/cornell-box/mcguire/CornellBox-Original.obj");
     checkScene(bl::test::sharedPath("data/cornell-box/mcguire/CornellBox-Original.obj"), 256, 4);
 }
 
-TEST_F(BundleExactness, StanfordBunny) { checkScene(bl::test::sharedPath("data/bunny/mcguire/bunny.obj"), 256, 2); }
+TEST_F(BundleExactness, StanfordBunny) {
+    BL_SKIP_WITHOUT_SHARED("data/bunny/mcguire/bunny.obj");
+    checkScene(bl::test::sharedPath("data/bunny/mcguire/bunny.obj"), 256, 2);
+}
 
-TEST_F(BundleExactness, Sponza) { checkScene(bl::test::sourcePath("data/external/sponza-point.toml"), 256, 2); }
+TEST_F(BundleExactness, Sponza) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/sponza-point.toml");
+    checkScene(bl::test::sourcePath("data/external/sponza-point.toml"), 256, 2);
+}
 
 // The compute backend (software rasterization in compute shaders) against the same Embree hits.
 TEST_F(BundleExactness, ComputeBackendCornellBox) {
@@ -134,14 +141,17 @@ TEST_F(BundleExactness, ComputeBackendCornellBox) {
 }
 
 TEST_F(BundleExactness, ComputeBackendMcGuireCornellWithCoplanarDuplicates) {
+    BL_SKIP_WITHOUT_SHARED("data/cornell-box/mcguire/CornellBox-Original.obj");
     checkScene(bl::test::sharedPath("data/cornell-box/mcguire/CornellBox-Original.obj"), 256, 4, BundleBackend::Compute);
 }
 
 TEST_F(BundleExactness, ComputeBackendStanfordBunny) {
+    BL_SKIP_WITHOUT_SHARED("data/bunny/mcguire/bunny.obj");
     checkScene(bl::test::sharedPath("data/bunny/mcguire/bunny.obj"), 256, 2, BundleBackend::Compute);
 }
 
 TEST_F(BundleExactness, ComputeBackendSponza) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/sponza-point.toml");
     checkScene(bl::test::sourcePath("data/external/sponza-point.toml"), 256, 2, BundleBackend::Compute);
 }
 
@@ -294,6 +304,7 @@ TEST_F(BundleExactness, ListWalkIsTimed) {
 }
 
 TEST_F(BundleExactness, TiledBuildIsTheUntiledBuildFragmentForFragment) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/sponza-point.toml");
     Scene scene = loadScene(bl::test::sourcePath("data/external/sponza-point.toml"));
     gpu::GpuScene gpuScene(ctx(), scene);
     const Bounds b = scene.bounds();
@@ -334,6 +345,7 @@ TEST_F(BundleExactness, TiledBuildIsTheUntiledBuildFragmentForFragment) {
 // pixel the same fragments with the same faces and depths, except pixel centres exactly on a
 // shared edge, which the two tie rules may give to different triangles.
 TEST_F(BundleExactness, ComputeBuildMatchesTheRasterBuild) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/sponza-point.toml");
     Scene scene = loadScene(bl::test::sourcePath("data/external/sponza-point.toml"));
     gpu::GpuScene gpuScene(ctx(), scene);
     const Bounds b = scene.bounds();

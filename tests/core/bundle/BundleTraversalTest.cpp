@@ -183,4 +183,7 @@ protected:
 
 TEST_F(BundleTraversal, UnsortedCornellBox) { check(bl::test::sourcePath("data/cornell-box/cornell.toml"), false); }
 TEST_F(BundleTraversal, SortedCornellBox) { check(bl::test::sourcePath("data/cornell-box/cornell.toml"), true); }
-TEST_F(BundleTraversal, SortedSponza) { check(bl::test::sourcePath("data/external/sponza-point.toml"), true); }
+TEST_F(BundleTraversal, SortedSponza) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/sponza-point.toml");
+    check(bl::test::sourcePath("data/external/sponza-point.toml"), true);
+}

@@ -47,6 +47,7 @@ TEST(DirectionSampler, UniformSequencesCoverTheSphereEvenly) {
 }
 
 TEST(DirectionSampler, ImportanceFollowsEquationTwo) {
+    BL_SKIP_WITHOUT_SHARED("data/envmap/classroom-sky.hdr");
     Environment env;
     env.present = true;
     env.map = readImage(bl::test::sharedPath("data/envmap/classroom-sky.hdr"));

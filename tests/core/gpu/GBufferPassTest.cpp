@@ -66,6 +66,7 @@ TEST_F(GBufferPassTest, TwoRecordsInOneCommandBufferSeeTheirOwnCameras) {
 // stored for that pixel. The bunny has 144k triangles, so ids use the high 16 bits too; the
 // Cornell box has an animated copy, so a model transform is applied.
 TEST_F(GBufferPassTest, SurfaceChannelLocatesEverySampleInItsTriangle) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/bunny-envmap.toml");
     for (const char* path : {"data/external/bunny-envmap.toml", "data/cornell-box/cornell-animated.toml"}) {
         SCOPED_TRACE(path);
         Scene scene = loadScene(test::sourcePath(path));

@@ -60,6 +60,7 @@ TEST_F(GpuSceneAtlas, CornellBoxUpload) {
 }
 
 TEST_F(GpuSceneAtlas, TexturedTeapotUpload) {
+    BL_SKIP_WITHOUT_SHARED("data/glossy/teapot/teapot.obj");
     Scene scene = loadScene(bl::test::sharedPath("data/glossy/teapot/teapot.obj"));
     const atlas::Atlas atlas = atlas::buildAtlas(scene, atlas::AtlasOptions{512});
     expectUploaded(scene, atlas::linkAtlas(scene, atlas));

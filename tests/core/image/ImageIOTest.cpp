@@ -52,6 +52,8 @@ TEST(ImageIO, PngPreviewAndErrors) {
 }
 
 TEST(ImageIO, ReadsTheSharedHdrAndReference) {
+    BL_SKIP_WITHOUT_SHARED("data/envmap/classroom-sky.hdr");
+    BL_SKIP_WITHOUT_SHARED("references/cornell-mcguire/mcguire-CornellBox-Original_256_1024spp.exr");
     Image sky = readImage(sharedPath("data/envmap/classroom-sky.hdr"));
     EXPECT_EQ(sky.width(), 512);
     EXPECT_GT(sky.mean().x, 0.0);

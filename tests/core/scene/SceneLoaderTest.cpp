@@ -67,6 +67,7 @@ TEST(SceneLoader, EverySceneInDataLoads) {
 }
 
 TEST(SceneLoader, McGuireCornellDropsDuplicatesAndKeepsItsLight) {
+    BL_SKIP_WITHOUT_SHARED("data/cornell-box/mcguire/CornellBox-Original.obj");
     Scene s = loadScene(sharedPath("data/cornell-box/mcguire/CornellBox-Original.obj"));
     SceneFeatures f = s.features();
     EXPECT_GT(s.loadStats.duplicateTriangles + s.loadStats.degenerateTriangles, 0u);
@@ -80,6 +81,7 @@ TEST(SceneLoader, McGuireCornellDropsDuplicatesAndKeepsItsLight) {
 }
 
 TEST(SceneLoader, BareMeshGetsCameraAndLight) {
+    BL_SKIP_WITHOUT_SHARED("data/bunny/stanford/bun_zipper_res4.ply");
     Scene s = loadScene(sharedPath("data/bunny/stanford/bun_zipper_res4.ply"));
     EXPECT_EQ(s.lights.size(), 1u);
     EXPECT_TRUE(s.environment.present);
@@ -130,6 +132,7 @@ TEST(SceneLoader, LightKeyframes) {
 }
 
 TEST(SceneLoader, EnvironmentMapFromSharedData) {
+    BL_SKIP_WITHOUT_SHARED("data/envmap/classroom-sky.hdr");
     std::string hdr = std::filesystem::absolute(sharedPath("data/envmap/classroom-sky.hdr")).string();
     Scene s = loadScene(sceneWith("[environment]\nfile = \"" + hdr + "\"\nscale = 2.0\n"));
     EXPECT_TRUE(s.environment.hasMap());
@@ -154,6 +157,7 @@ TEST(SceneLoader, MeshMaterialsMapToSceneMaterialsByName) {
 }
 
 TEST(SceneLoader, McGuireGlossyGetsTheExactMaterialsOfItsSceneFile) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/cornell-glossy-point.toml");
     Scene s = loadScene(sourcePath("data/external/cornell-glossy-point.toml"));
     std::map<std::string, std::string> materialOfMesh;
     for (const Mesh& m : s.meshes) {
@@ -282,6 +286,7 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<BadScene>& param) { return std::string(param.param.name); });
 
 TEST(SceneLoader, EnvironmentMapTimesScaleMustBeAFloat) {
+    BL_SKIP_WITHOUT_SHARED("data/envmap/classroom-sky.hdr");
     const std::string hdr = std::filesystem::absolute(sharedPath("data/envmap/classroom-sky.hdr")).string();
     const std::string ok = sceneWith("[environment]\nfile = \"" + hdr + "\"\nscale = 1e30\n", "env_ok.toml");
     EXPECT_EQ(loadError(ok), "");

@@ -310,6 +310,7 @@ TEST_F(Atlas, CornellDelayedIndirectMatchesReferenceLayers) {
 // is 0.870-0.880. Tolerances: image mean within 5% per channel, the indirect's channel mean within
 // 6% (seed 3's blue is 5.9% low: per channel the seeds spread too far), direct within 4%.
 TEST_F(Atlas, GlossyCornellMatchesReference) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/cornell-glossy-point.toml");
     Scene s = loadSmall("data/external/cornell-glossy-point.toml", 32);
     const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=192", "view_samples=16"};
     ImageSet test = run(s, 512, settings)->resolve();
@@ -331,6 +332,7 @@ TEST_F(Atlas, GlossyCornellMatchesReference) {
 // the sun's few directions dominate the spread. Swapping the two escape directions (sky below)
 // moves the mean by far more.
 TEST_F(Atlas, EnvironmentMapMatchesReference) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/analytic/sky-blocks.toml");
     Scene s = loadSmall("data/analytic/sky-blocks.toml", 32);
     for (Material& m : s.materials) m.specular = glm::vec3(0.0f);
     ImageSet reference = bl::test::renderReference(s, 1024);

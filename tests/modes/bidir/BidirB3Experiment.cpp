@@ -60,6 +60,7 @@ class BidirB3 : public bl::test::VulkanTest {};
 } // namespace
 
 TEST_F(BidirB3, DISABLED_VplAgainstBundleSmoothAndFlat) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/cornell-glossy-point.toml");
     const std::uint32_t seeds = envOr("B3_SEEDS", 8), frames = envOr("B3_FRAMES", 64), spp = envOr("B3_SPP", 1024);
     for (const bool flat : {false, true}) {
         Scene s = loadScene(bl::test::sourcePath("data/external/cornell-glossy-point.toml"));

@@ -38,6 +38,7 @@ TEST_F(Bidir, PlanSkipsSuppressionWithoutGlossyMaterialImageUnchanged) {
     const auto none = render(diffuse, "none", false);
     EXPECT_TRUE(same(skipped.first, none.first) && same(skipped.second, none.second));
 
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/cornell-glossy-point.toml");
     Scene glossy = loadScene(bl::test::sourcePath("data/external/cornell-glossy-point.toml"));
     glossy.camera.resolution = {kResolution, kResolution};
     const auto suppressed = render(glossy, "roughness", true);
@@ -140,6 +141,7 @@ TEST_F(Bidir, VisibleFitCoversEveryCameraPointWithSmallerPixels) {
 // reference's region by region and in its image mean, no sample dropped; with
 // environment_bundles = 0 the plan skips the pass and `direct` is zero.
 TEST_F(Bidir, EnvironmentBundlesConvergeToReferenceDirect) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/analytic/sky-blocks.toml");
     Scene s = loadScene(bl::test::sourcePath("data/analytic/sky-blocks.toml"));
     s.camera.resolution = {kResolution, kResolution};
     const std::vector<double> reference = regionMeans(bl::test::layerOf(bl::test::renderReference(s, kReferenceSpp), "direct"));

@@ -85,6 +85,7 @@ TEST_F(BidirEstimators, TwoBounceClampingLosesAStatedShare) {
 // term. (clamp and roughness are biases by design; their
 // relMSE and energy lost are measured in experiments/bidir-glossy.toml.)
 TEST_F(Bidir, NoSuppressionIsUnbiasedOnGlossyScene) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/cornell-glossy-point.toml");
     Scene s = loadScene(bl::test::sourcePath("data/external/cornell-glossy-point.toml"));
     s.camera.resolution = {kResolution, kResolution};
     const ImageSet glossyRef = bl::test::renderReference(s, kReferenceSpp);

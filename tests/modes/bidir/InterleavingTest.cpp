@@ -418,6 +418,7 @@ TEST_F(Interleaving, CacheHitsLayerIsTheShareOfAcceptedCaches) {
 // and roughness. The old N = K = 4 at every pixel fails it (32^2, seed 3: 136 and 135 of the 137 lit
 // pixels of sub-image 0 equal with clamp and roughness; the suppression is strongest on few pixels).
 TEST_F(Interleaving, SuppressionDensityCountsThePixelsOwnPairs) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/cornell-glossy-point.toml");
     Scene s = loadScene(bl::test::sourcePath("data/external/cornell-glossy-point.toml"));
     s.camera.resolution = {kResolution, kResolution};
     for (const std::string suppression : {"clamp", "roughness"}) {

@@ -64,6 +64,9 @@ TEST_F(RasterScenes, ProgressiveJitterConvergesToTheBoxFilter) {
 // light with PCF shadow cubes (Sponza) and from an area light by emitter points (McGuire's Cornell
 // box). Image means over 16 jittered iterations against 64 spp.
 TEST_F(RasterScenes, SharedScenesMatchTheReferenceInWhatRasterComputes) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/cornell-mcguire.toml");
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/sponza-point.toml");
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/bunny-envmap.toml");
     struct Case {
         const char* path;
         bool directLit; // direct light is raster's too (point, spot and area lights; not the environment)

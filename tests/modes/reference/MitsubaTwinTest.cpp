@@ -10,6 +10,8 @@
 using namespace bl;
 
 TEST(MitsubaTwin, CornellBoxImportRendersAsItsTomlTwin) {
+    BL_SKIP_WITHOUT_SHARED("data/cornell-box/mitsuba-cbox/cbox-rgb.xml");
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/mitsuba-cbox.toml");
     Scene xml = loadScene(bl::test::sharedPath("data/cornell-box/mitsuba-cbox/cbox-rgb.xml"));
     Scene twin = loadScene(bl::test::sourcePath("data/external/mitsuba-cbox.toml"));
     EXPECT_EQ(xml.triangleCount(), twin.triangleCount());

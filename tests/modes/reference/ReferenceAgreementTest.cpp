@@ -8,6 +8,8 @@
 using namespace bl;
 
 TEST(ReferenceAgreement, McGuireCornellBoxMatchesTungsten) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/external/cornell-mcguire.toml");
+    BL_SKIP_WITHOUT_SHARED("references/cornell-mcguire/mcguire-CornellBox-Original_256_1024spp.exr");
     Scene s = loadScene(bl::test::sourcePath("data/external/cornell-mcguire.toml"));
     ASSERT_EQ(s.camera.resolution, glm::ivec2(256, 256));
     // 256 spp: block-ratio noise ~1.1% (it halves with 4x the block area: noise, not bias).

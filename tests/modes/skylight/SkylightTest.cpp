@@ -71,6 +71,7 @@ TEST_F(Skylight, AmbientOcclusionMatchesReference) {
 // glossy block: every direction is shared by all points, so the remaining error is correlated
 // over the image and shrinks slowly; the bounds are loose but two-sided.
 TEST_F(Skylight, EnvironmentMapWithImportanceDirectionsMatchesReference) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/analytic/sky-blocks.toml");
     Scene s = loadSmall("data/analytic/sky-blocks.toml", 96);
     Image sky = render(s, 2048, {"bundle_resolution=512", "directions=importance"});
     Image ref = bl::test::renderReference(s, 256, {"max_segments=2"}).radiance();
@@ -286,6 +287,8 @@ TEST(SkylightIrradianceTable, MatchesAnalyticSkiesAndBruteForce) {
     std::printf("gradient sky: table max relative error %.2e\n", worst);
     EXPECT_LT(worst, 2e-3);
 
+    BL_SKIP_WITHOUT_SHARED("data/envmap/vogl-probe.hdr");
+    BL_SKIP_WITHOUT_SHARED("data/envmap/classroom-sky.hdr");
     for (const char* probe : {"envmap/vogl-probe.hdr", "envmap/classroom-sky.hdr"}) {
         Environment env;
         env.present = true;
@@ -309,6 +312,7 @@ TEST(SkylightIrradianceTable, MatchesAnalyticSkiesAndBruteForce) {
 // the per-pixel variance of one sample (the accumulator's variance of the mean times N), averaged
 // over the image, at equal directions, both measured in the same run.
 TEST_F(Skylight, ControlVariateIsUnbiasedAndReducesVariance) {
+    BL_SKIP_WITHOUT_SCENE_FILES("data/analytic/sky-blocks.toml");
     Scene s = loadSmall("data/analytic/sky-blocks.toml", 32);
     const Image ref = bl::test::renderReference(s, 1024, {"max_segments=2"}).radiance();
     const int seeds = 8;
