@@ -161,7 +161,7 @@ resolution = [$resolution, $resolution]"
 else
     seconds=6 spp=1024 resolution=128 mb="" bd="" at=""
     # On the area-lit box: multibounce's emitters by bundle hits alone ([TO12]) beside its default MIS
-    # with emitter points, and atlas with its first shot beside its default exchange.
+    # with emitter points, and atlas's exchange alone beside its default first shot.
     area_variants="[[mode]]
 mode     = \"multibounce\"
 label    = \"multibounce-bundles\"
@@ -170,9 +170,9 @@ settings = { emitter_sampling = \"bundles\" }
 
 [[mode]]
 mode     = \"atlas\"
-label    = \"atlas-first-shot\"
+label    = \"atlas-exchange\"
 scenes   = [\"cornell-area\"]
-settings = { first_shot = true }
+settings = { first_shot = \"off\" }
 "
     scenes="[[scene]]
 name = \"cornell-point\"

@@ -1,4 +1,4 @@
-// Mode atlas's first shot (first_shot = true): the area emitters' direct light by emitter points
+// Mode atlas's first shot (first_shot = auto | on): the area emitters' direct light by emitter points
 // (gpu/EmitterPointPass.h) into the direct atlas, a new set of points every direction, so the
 // exchange carries reflected light only (shaders/modes/atlas/first_shot.comp.glsl).
 #include "modes/atlas/AtlasGpu.h"
@@ -13,9 +13,33 @@ namespace bl {
 using atlasmode::addressOf;
 using atlasmode::kStorage;
 
+AtlasMode::FirstShotChoice AtlasMode::firstShotChoice(const Scene& scene) const {
+    const SceneFeatures f = scene.features();
+    FirstShotChoice c;
+    if (!f.emissiveMeshes) {
+        c.why = "no area emitters";
+        return c;
+    }
+    if (mSettings.getString(kTransfer) == "bounce") {
+        c.conflict = "transfer = bounce";
+    } else if (mSettings.getInt(kDelayIndirect) != 0) {
+        c.conflict = "delay_indirect = " + std::to_string(mSettings.getInt(kDelayIndirect));
+    } else if (f.glossy && mSettings.getString(kGlossy) != "off") {
+        c.conflict = "glossy = " + mSettings.getString(kGlossy) + " on glossy materials";
+    }
+    if (mSettings.getString(kFirstShot) == "off") {
+        c.why = "first_shot = off: the exchange carries the emitters' light";
+    } else if (!c.conflict.empty()) {
+        c.why = "first_shot = auto, " + c.conflict + ": the exchange carries the emitters' light";
+    } else {
+        c.runs = true;
+    }
+    return c;
+}
+
 void AtlasMode::setUpFirstShot(const Scene& scene) {
     Gpu& g = *mGpu;
-    g.firstShot = mSettings.getBool(kFirstShot) && scene.features().emissiveMeshes;
+    g.firstShot = firstShotChoice(scene).runs;
     if (!g.firstShot) {
         return;
     }

@@ -99,12 +99,12 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
                     " needs transfer=interleaved (bounce-by-bounce transfer sends direct light alone in its first "
                     "pass already)");
     }
-    if (mSettings.getBool(kFirstShot) && scene.features().emissiveMeshes &&
-        (mSettings.getString(kTransfer) == "bounce" || mSettings.getInt(kDelayIndirect) != 0 ||
-         (scene.features().glossy && mSettings.getString(kGlossy) != "off"))) {
-        throw Error("atlas: first_shot needs transfer=interleaved, delay_indirect=0 and no glossy transport (glossy=off "
-                    "or no glossy materials): the shot's light does not yet enter a fixed pass sender, the one-bounce "
-                    "channel or the glossy transfer atlas");
+    if (const FirstShotChoice shot = firstShotChoice(scene);
+        mSettings.getString(kFirstShot) == "on" && !shot.conflict.empty()) {
+        throw Error("atlas: first_shot = on needs transfer=interleaved, delay_indirect=0 and no glossy transport "
+                    "(glossy=off or no glossy materials), here " + shot.conflict +
+                    ": the shot's light does not yet enter a fixed pass sender, the one-bounce channel or the glossy "
+                    "transfer atlas (first_shot = auto leaves the shot out there)");
     }
     mIndirectDirections = 0;
     mIndirectWeight = 0.0;

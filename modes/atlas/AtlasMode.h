@@ -196,6 +196,15 @@ private:
     // points' cubes and their light into the direct atlas and the senders' constant part
     // (AtlasFirstShot.cpp).
     void setUpFirstShot(const Scene& scene);
+    // Whether the first shot runs on `scene` and, where not, why (plan). `conflict` names a setting
+    // whose sender the shot's light would not reach (transfer = bounce, delay_indirect, glossy
+    // transport): first_shot = auto then leaves the shot out, first_shot = on is refused.
+    struct FirstShotChoice {
+        bool runs = false;
+        std::string why;
+        std::string conflict;
+    };
+    FirstShotChoice firstShotChoice(const Scene& scene) const;
     void recordFirstShot(VkCommandBuffer cmd, double time);
     // The sampler index of the i-th direction processed (shuffled in blocks for the glossy
     // transfer, DirectionOrder.h; else i).

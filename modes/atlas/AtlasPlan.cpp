@@ -49,11 +49,11 @@ std::vector<ParamSpec> AtlasMode::parameters() {
          "from direction N + 1 on ([HHGM10] 6.4); the one-bounce (plain mean: its sender is fixed) and multi-bounce "
          "(j^k from its first direction) estimates are summed apart (0: one estimate; interleaved transfer only)",
          0, 1 << 24, {}},
-        {kFirstShot, false, "",
+        {kFirstShot, std::string("auto"), "",
          "area emitters' direct light by emitter points into the direct atlas every direction (radiosity's first shot; "
-         "gpu/EmitterPointPass.h), the exchange then carrying reflected light only (interleaved transfer, no "
-         "delay_indirect, no glossy transport)",
-         0, 1, {}},
+         "gpu/EmitterPointPass.h), the exchange then carrying reflected light only; it needs interleaved transfer, no "
+         "delay_indirect and no glossy transport: auto = on where those hold, on = refuse settings that break them",
+         0, 0, {"auto", "on", "off"}},
         {kEmitterPoints, std::int64_t{16}, "points", "first_shot: points drawn on the emitters per direction, by power",
          1, 256, {}},
         {kEmitterShadowResolution, std::int64_t{256}, "texels", "first_shot: side of each emitter point's cube face", 16,
@@ -74,12 +74,15 @@ std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {
                                     " triangles, built once at set-up (charts, packing, exact texel areas)"});
     p.push_back({"bundle build", true, "one " + r + "^2 bundle per direction with hit payload (triangle, barycentrics)"});
     p.push_back({"bundle sort", true, "depth order: consecutive hits of a list see each other"});
-    const bool shot = f.emissiveMeshes && mSettings.getBool(kFirstShot);
+    const FirstShotChoice choice = firstShotChoice(scene);
+    const bool shot = choice.runs;
     if (shot) {
         p.push_back({"first shot", true,
                      std::to_string(mSettings.getInt(kEmitterPoints)) +
                          " emitter point(s) per direction, a " + std::to_string(mSettings.getInt(kEmitterShadowResolution)) +
                          "^2 cube each, their light averaged over each texel's sample points into the direct atlas"});
+    } else {
+        p.push_back({"first shot", false, choice.why});
     }
     std::string exchange = shot ? "consecutive hits exchange reflected radiance both ways (sender = direct + mean)"
                                 : "consecutive hits exchange radiance both ways (interleaved: sender = emission + mean)";

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Mode atlas, the first shot (first_shot = true; radiosity's "shoot the light sources first"):
+// Mode atlas, the first shot (first_shot = auto | on; radiosity's "shoot the light sources first"):
 // one invocation per texel averages, over its sample points (modes/atlas/TexelSamples.h, weighted
 // by area), the irradiance this iteration's emitter points give each side of the surface
 // (gpu/EmitterPointLight.glsl), as the direct pass does for point lights:

@@ -71,7 +71,8 @@ TEST_F(Atlas, RefusesSettingsThatMixPathLengths) {
 TEST_F(Atlas, CornellMatchesReference) {
     Scene s = loadSmall("data/cornell-box/cornell.toml", kStatResolution);
     constexpr std::uint32_t kDirections = 512;
-    const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=128", "view_samples=16"};
+    const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=128", "view_samples=16",
+                                            "first_shot=off"};
     const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
     Image reflected = reference.radiance();
     const Image& emitted = bl::test::layerOf(reference, "emitted");
@@ -191,7 +192,7 @@ TEST_F(Atlas, CornellPointLightMatchesReference) {
                      "cornell point indirect");
 }
 
-// The area-lit Cornell box by the first shot (first_shot = true): the emitters' direct light by
+// The area-lit Cornell box by the first shot (first_shot = on): the emitters' direct light by
 // emitter points into the direct atlas (layer `direct`, a new set of 16 points every direction), the
 // exchange carrying reflected light only (layer `rest`): the point-lit test above with the area
 // light. `direct` within the points' cube bound (kEmitterShadowTolerance) + the texel bias of the
@@ -204,7 +205,7 @@ TEST_F(Atlas, CornellFirstShotMatchesReference) {
     Scene s = loadSmall("data/cornell-box/cornell.toml", kStatResolution);
     constexpr std::uint32_t kDirections = 64;
     const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=128", "view_samples=4",
-                                            "first_shot=true"};
+                                            "first_shot=on"};
     const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
     const Image& referenceDirect = bl::test::layerOf(reference, "direct");
     const Image referenceIndirect = sumOf(reference, {"indirect1", "indirect2", "rest"});
@@ -232,16 +233,30 @@ TEST_F(Atlas, CornellFirstShotMatchesReference) {
 TEST_F(Atlas, FirstShotRefusesTransfersItDoesNotFeed) {
     Scene s = loadSmall("data/cornell-box/cornell.toml", 16);
     for (const std::vector<std::string>& settings :
-         {std::vector<std::string>{"first_shot=true", "transfer=bounce"},
-          std::vector<std::string>{"first_shot=true", "delay_indirect=4"}}) {
+         {std::vector<std::string>{"first_shot=on", "transfer=bounce"},
+          std::vector<std::string>{"first_shot=on", "delay_indirect=4"}}) {
         std::unique_ptr<Mode> mode = createMode("atlas", settings);
         try {
             mode->setScene(s, &ctx());
             ADD_FAILURE() << "accepted " << settings[1];
         } catch (const Error& e) {
-            EXPECT_NE(std::string(e.what()).find("first_shot needs transfer=interleaved"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("first_shot = on needs transfer=interleaved"), std::string::npos) << e.what();
         }
     }
+    // first_shot = auto (the default) leaves the shot out there and says why; on the plain box it runs.
+    const auto firstShot = [&](const std::vector<std::string>& settings) {
+        for (const PlannedPass& p : createMode("atlas", settings)->plan(s)) {
+            if (p.name == "first shot") return p;
+        }
+        ADD_FAILURE() << "no first shot in the plan";
+        return PlannedPass{};
+    };
+    const PlannedPass bounce = firstShot({"transfer=bounce"});
+    EXPECT_FALSE(bounce.runs);
+    EXPECT_NE(bounce.reason.find("first_shot = auto, transfer = bounce"), std::string::npos) << bounce.reason;
+    EXPECT_NO_THROW(createMode("atlas", {"transfer=bounce"})->setScene(s, &ctx()));
+    EXPECT_TRUE(firstShot({}).runs);
+    EXPECT_FALSE(firstShot({"first_shot=off"}).runs);
 }
 
 // A scene lit by both an area emitter and a point light: the first shot's light adds to the point
@@ -260,7 +275,7 @@ TEST_F(Atlas, FirstShotAddsToPointLights) {
     both.lights.push_back(point);
     Scene pointOnly = both;
     for (Mesh& m : pointOnly.meshes) m.emission = glm::vec3(0.0f);
-    const std::vector<std::string> settings{"atlas_resolution=32", "bundle_resolution=32", "first_shot=true"};
+    const std::vector<std::string> settings{"atlas_resolution=32", "bundle_resolution=32", "first_shot=on"};
     const auto directMean = [&](const Scene& s) {
         const ImageSet out = run(s, 4, settings)->resolve();
         EXPECT_EQ(out.nonFiniteSamples, 0u);
@@ -271,7 +286,7 @@ TEST_F(Atlas, FirstShotAddsToPointLights) {
     EXPECT_GT(a, 0.1 * p);
     EXPECT_GT(p, 0.1 * a);
     EXPECT_NEAR(ab, a + p, 1e-4 * (a + p));
-    std::unique_ptr<Mode> bounce = createMode("atlas", {"first_shot=true", "transfer=bounce"});
+    std::unique_ptr<Mode> bounce = createMode("atlas", {"first_shot=on", "transfer=bounce"});
     EXPECT_NO_THROW(bounce->setScene(pointOnly, &ctx()));
 }
 
@@ -408,7 +423,10 @@ TEST_F(Atlas, SkippedPassesLeaveTheImageUnchanged) {
     unused.specular = glm::vec3(0.5f);
     unused.exponentU = unused.exponentV = 40.0f;
     forced.materials.push_back(unused);
-    const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=128", "view_samples=2"};
+    // The exchange carries the emitters' light on both sides: with first_shot = auto the unused
+    // glossy material would leave the shot out of `forced` alone.
+    const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=128", "view_samples=2",
+                                            "first_shot=off"};
     auto passRuns = [&](const Scene& s, const std::string& name) {
         for (const PlannedPass& p : createMode("atlas", settings)->plan(s)) {
             if (p.name == name) return p.runs;
