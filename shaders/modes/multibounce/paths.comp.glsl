@@ -30,6 +30,7 @@
 #define BL_SHADOW_BINDING kMultibounceBindingShadowMaps
 #define BL_SHADOW_BINDING_2 kMultibounceBindingEmitterShadowMaps
 #include "gpu/ShadowCubeLookup.glsl"
+#include "gpu/ShadowedLight.glsl"
 #define BL_EMITTER_POINTS_SET kMultibounceSet
 #define BL_EMITTER_POINTS_BINDING kMultibounceBindingEmitterPoints
 #include "gpu/EmitterPointLight.glsl"
@@ -62,23 +63,11 @@ vec3 directLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
     vec3 radiance = vec3(0.0);
     for (uint i = 0u; i < push.lightCount; ++i) {
         GpuLight light = lights[i];
-        vec3 d = x - light.position;
-        float r2 = dot(d, d);
-        if (!(r2 > 0.0)) {
-            continue;
+        vec3 wi;
+        float weight;
+        if (blShadowedLightWeight(light, i, push.shadowResolution, x, n, wi, weight)) {
+            radiance += blEvalBrdf(m, albedo, n, wi, wo) * light.intensity * weight;
         }
-        vec3 fromLight = d * inversesqrt(r2);
-        vec3 wi = -fromLight;
-        float cosine = dot(n, wi);
-        float profile = blLightProfile(light, fromLight);
-        if (cosine <= 0.0 || profile <= 0.0) {
-            continue;
-        }
-        float visibility = blShadowVisibility(kShadowCubeFaces * i, push.shadowResolution, d, n);
-        if (visibility <= 0.0) {
-            continue;
-        }
-        radiance += blEvalBrdf(m, albedo, n, wi, wo) * light.intensity * (profile * visibility * cosine / r2);
     }
     return radiance;
 }

@@ -14,6 +14,7 @@
 #define BL_SHADOW_BINDING kRasterBindingShadowMaps
 #define BL_SHADOW_BINDING_2 kRasterBindingEmitterShadowMaps
 #include "gpu/ShadowCubeLookup.glsl"
+#include "gpu/ShadowedLight.glsl"
 #define BL_EMITTER_POINTS_SET kRasterSet
 #define BL_EMITTER_POINTS_BINDING kRasterBindingEmitterPoints
 #include "gpu/EmitterPointLight.glsl"
@@ -28,24 +29,11 @@ vec3 directLight(vec3 position, vec3 n, GpuMaterial m, vec3 albedo) {
     vec3 radiance = vec3(0.0);
     for (uint i = 0u; i < push.lightCount; ++i) {
         GpuLight light = lights[i];
-        vec3 d = position - light.position;
-        float r2 = dot(d, d);
-        if (!(r2 > 0.0)) {
-            continue;
+        vec3 wi;
+        float weight;
+        if (blShadowedLightWeight(light, i, push.shadowResolution, position, n, wi, weight)) {
+            radiance += blEvalBrdf(m, albedo, n, wi, wo) * light.intensity * weight;
         }
-        vec3 fromLight = d * inversesqrt(r2);
-        vec3 wi = -fromLight;
-        float cosine = dot(n, wi);
-        float profile = blLightProfile(light, fromLight);
-        if (cosine <= 0.0 || profile <= 0.0) {
-            continue; // lit from the side the camera does not see, or outside the spot cone
-        }
-        float visibility = blShadowVisibility(kShadowCubeFaces * i, push.shadowResolution, d, n);
-        if (visibility <= 0.0) {
-            continue;
-        }
-        vec3 f = blEvalBrdf(m, albedo, n, wi, wo);
-        radiance += f * light.intensity * (profile * visibility * cosine / r2);
     }
     return radiance;
 }
