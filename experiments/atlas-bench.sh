@@ -28,7 +28,7 @@ for atlas in $atlases; do
         for r in $(seq 1 "$repeats"); do
             for it in $warm $((warm + n)); do
                 "$bl" render "$scene" --mode atlas --iterations "$it" --width 32 --height 32 --seed "$r" \
-                    --set atlas_resolution="$atlas" --set bundle_resolution="$bundle" --set view_samples=1 \
+                    --set atlas_resolution="$atlas" --set bundle_resolution="$bundle" --set view_samples=1 --set first_shot=off \
                     --out "$out/a$atlas-b$bundle-r$r-i$it.exr" >"$out/a$atlas-b$bundle-r$r-i$it.log" 2>&1
             done
         done

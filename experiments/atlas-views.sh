@@ -31,7 +31,7 @@ for size in 128 512; do
                 name=s$size-v$vs-r$r-$kind
                 t0=$(date +%s.%N)
                 "$bl" render "$scene" --mode atlas --iterations "$dirs" --width "$size" --height "$size" --seed "$r" \
-                    --set atlas_resolution=1024 --set bundle_resolution=512 --set view_samples="$vs" \
+                    --set atlas_resolution=1024 --set bundle_resolution=512 --set view_samples="$vs" --set first_shot=off \
                     "${extra[@]}" --out "$out/$name.exr" >"$out/$name.log" 2>&1
                 t1=$(date +%s.%N)
                 echo "$t0 $t1" >"$out/$name.time"

@@ -5,7 +5,7 @@
 
 #include <mutex>
 #include <string>
-#include <unordered_map>
+#include <utility>
 
 namespace bl::vk {
 
@@ -13,10 +13,12 @@ namespace {
 using TypeCounts = std::map<VkDescriptorType, std::uint32_t>;
 
 // Each layout's descriptor counts by type, for the pools' own accounting (a layout handle does not
-// tell them). A destroyed layout's handle value may come back for a new layout, which overwrites it.
+// tell them), keyed by device and handle (handle values are unique per device only). A destroyed
+// layout's handle value may come back for a new layout, which overwrites it; entries are a few
+// bytes and a process makes hundreds of layouts at most, so none is removed.
 struct LayoutCounts {
     std::mutex mutex;
-    std::unordered_map<VkDescriptorSetLayout, TypeCounts> counts;
+    std::map<std::pair<VkDevice, VkDescriptorSetLayout>, TypeCounts> counts;
 };
 
 LayoutCounts& layoutCounts() {
@@ -35,12 +37,13 @@ DescriptorSetLayout makeDescriptorSetLayout(VkDevice device, std::initializer_li
     info.pBindings = list.data();
     VkDescriptorSetLayout raw = VK_NULL_HANDLE;
     BL_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, &raw));
+    DescriptorSetLayout layout(device, raw); // owned before anything below may throw
     TypeCounts counts;
     for (const Binding& b : bindings) counts[b.type] += b.count;
     LayoutCounts& registry = layoutCounts();
     const std::lock_guard lock(registry.mutex);
-    registry.counts[raw] = std::move(counts);
-    return DescriptorSetLayout(device, raw);
+    registry.counts[{device, raw}] = std::move(counts);
+    return layout;
 }
 
 DescriptorPool::DescriptorPool(VkDevice device, std::uint32_t maxSets, std::uint32_t perType) {
@@ -72,8 +75,12 @@ VkDescriptorSet DescriptorPool::allocate(VkDescriptorSetLayout layout) {
     {
         LayoutCounts& registry = layoutCounts();
         const std::lock_guard lock(registry.mutex);
-        const auto found = registry.counts.find(layout);
-        if (found != registry.counts.end()) needs = found->second;
+        const auto found = registry.counts.find({mPool.device(), layout});
+        if (found == registry.counts.end()) {
+            throw Error("descriptor pool: a set layout not made by makeDescriptorSetLayout, whose descriptors it "
+                        "cannot count");
+        }
+        needs = found->second;
     }
     for (const auto& [type, count] : needs) {
         const std::uint32_t left = mLeft.count(type) ? mLeft.at(type) : 0;

@@ -30,7 +30,9 @@ AtlasMode::FirstShotChoice AtlasMode::firstShotChoice(const Scene& scene) const 
     if (mSettings.getString(kFirstShot) == "off") {
         c.why = "first_shot = off: the exchange carries the emitters' light";
     } else if (!c.conflict.empty()) {
-        c.why = "first_shot = auto, " + c.conflict + ": the exchange carries the emitters' light";
+        c.why = mSettings.getString(kFirstShot) == "on"
+                    ? "first_shot = on with " + c.conflict + ": refused at set-up (first_shot = auto leaves the shot out)"
+                    : "first_shot = auto, " + c.conflict + ": the exchange carries the emitters' light";
     } else {
         c.runs = true;
     }

@@ -253,17 +253,25 @@ TEST_F(Atlas, CornellFirstShotMatchesReference) {
 // the one-bounce channel, the glossy transfer atlas), with the settings that allow it.
 TEST_F(Atlas, FirstShotRefusesTransfersItDoesNotFeed) {
     Scene s = loadSmall("data/cornell-box/cornell.toml", 16);
-    for (const std::vector<std::string>& settings :
-         {std::vector<std::string>{"first_shot=on", "transfer=bounce"},
-          std::vector<std::string>{"first_shot=on", "delay_indirect=4"}}) {
+    Scene glossy = s; // a glossy material (on no mesh) turns the glossy transfer on
+    Material lobe;
+    lobe.name = "glossy";
+    lobe.specular = glm::vec3(0.5f);
+    lobe.exponentU = lobe.exponentV = 40.0f;
+    glossy.materials.push_back(lobe);
+    for (const auto& [scene, settings] :
+         {std::pair{&s, std::vector<std::string>{"first_shot=on", "transfer=bounce"}},
+          std::pair{&s, std::vector<std::string>{"first_shot=on", "delay_indirect=4"}},
+          std::pair{&glossy, std::vector<std::string>{"first_shot=on", "glossy=transfer"}}}) {
         std::unique_ptr<Mode> mode = createMode("atlas", settings);
         try {
-            mode->setScene(s, &ctx());
+            mode->setScene(*scene, &ctx());
             ADD_FAILURE() << "accepted " << settings[1];
         } catch (const Error& e) {
             EXPECT_NE(std::string(e.what()).find("first_shot = on needs transfer=interleaved"), std::string::npos) << e.what();
         }
     }
+    EXPECT_NO_THROW(createMode("atlas", {"first_shot=on", "glossy=off"})->setScene(glossy, &ctx()));
     // first_shot = auto (the default) leaves the shot out there and says why; on the plain box it runs.
     const auto firstShot = [&](const std::vector<std::string>& settings) {
         for (const PlannedPass& p : createMode("atlas", settings)->plan(s)) {
@@ -322,7 +330,7 @@ TEST_F(Atlas, FirstShotAddsToPointLights) {
 TEST_F(Atlas, CornellDelayedIndirectMatchesReferenceLayers) {
     Scene s = loadSmall("data/cornell-box/cornell.toml", 32);
     std::unique_ptr<Mode> mode = run(s, 384, {"atlas_resolution=128", "bundle_resolution=192", "view_samples=16",
-                                              "delay_indirect=64"});
+                                              "delay_indirect=64", "first_shot=off"});
     ImageSet test = mode->resolve();
     EXPECT_EQ(test.nonFiniteSamples, 0u);
     ImageSet reference = bl::test::renderReference(s, 1024);
