@@ -5,6 +5,7 @@
 #include "bundle/BundleFrame.h"
 #include "bundle/FittingBuild.h"
 #include "gpu/CameraPass.h"
+#include "gpu/EmitterPointPass.h"
 #include "gpu/ShadowCubePass.h"
 #include "gpu/PackedTextures.h"
 #include "modes/bidir/EnvironmentBundles.h"
@@ -114,6 +115,12 @@ std::vector<ParamSpec> BidirMode::parameters() {
         {kFit, std::string("visible"), "",
          "bundle frames around the camera-visible points of the frame ([TO12s] B.1) or the scene's bounding sphere", 0,
          0, {"visible", "scene"}},
+        {kEmitterPoints, std::int64_t{16}, "points",
+         "points drawn on the area emitters per frame, by power, each shadowed by a cube: direct and one-bounce light "
+         "from area emitters (0: area lights left out)",
+         0, 256, {}},
+        {kEmitterShadowResolution, std::int64_t{256}, "texels", "side of each emitter point's shadow cube face", 16,
+         4096, {}},
         {kTwoBounceClamp, 0.0, "scene radius",
          "two-bounce term only: |x1 - x2| taken as at least this fraction of the scene's bounding radius (0: off, "
          "unbiased)",
@@ -130,6 +137,8 @@ struct BidirMode::Gpu {
     std::unique_ptr<gpu::CameraPass> camera;
     std::unique_ptr<gpu::ShadowCubePass> shadows;    // cube l = light l
     std::unique_ptr<gpu::ShadowCubePass> vplShadows; // cube k = VPL k
+    std::unique_ptr<gpu::EmitterPointPass> emitterPoints; // area emitters: direct and one-bounce light
+    bool pairBundles = false;                             // a bundle per VPL/bundle pair
     std::unique_ptr<BundlePool> pool;                // null for strategy = vpl
     std::unique_ptr<DirectionSampler> directions;
     std::unique_ptr<VplSampler> vpls;
@@ -183,9 +192,11 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
                              std::to_string(mSettings.getInt(kVplShadowResolution)) + "^2 cube each" +
                              (strategy == "bundle" ? " (for the two-bounce term only)" : "")
                          : "strategy = bundle with bounces = 1 uses no VPL"});
-    const bool bundles = lights && (strategy != "vpl" || twoBounce);
+    const bool area = f.emissiveMeshes && mSettings.getInt(kEmitterPoints) > 0;
+    const bool bundles = (lights && (strategy != "vpl" || twoBounce)) || (area && strategy != "vpl");
     p.push_back({"bundle builds", bundles,
-                 !lights  ? "no point or spot light: nothing for camera paths to reach"
+                 !lights && !area ? "no point, spot or area light: nothing for camera paths to reach"
+                 : !lights && strategy == "vpl" ? "strategy = vpl: area emitters' one-bounce light needs the bundles"
                  : bundles ? pairs + " bundles of " + std::to_string(mSettings.getInt(kBundleResolution)) +
                                  "^2 with hit payload per frame, around the " +
                                  (mSettings.getString(kFit) == "visible" ? "visible points" : "scene's sphere") +
@@ -193,6 +204,9 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
                            : "strategy = vpl with bounces = 1 uses no bundle"});
     p.push_back({"evaluate", true, lights ? "direct + one-bounce (" + strategy + ")" +
                                                 (twoBounce ? " + two-bounce" : "") + " at every visible point"
+                                   : area ? (strategy == "vpl" ? "no point/spot light: area emitters' direct light"
+                                                               : "no point/spot light: area emitters' direct and "
+                                                                 "one-bounce light")
                                           : f.environment && mSettings.getInt(kEnvironmentBundles) > 0
                                               ? "no point/spot light: emitters, environment background and direct "
                                                 "environment light by bundles"
@@ -230,8 +244,25 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
                                                                  "environment light (indirect: not yet)"
                                   : "environment_bundles = 0: the environment lights nothing",
                  f.environment && envBundles == 0});
-    if (f.emissiveMeshes) {
-        p.push_back({"area light", false, "not lit by bidir yet: use reference or multibounce", true});
+    if (f.emissiveMeshes && !area) {
+        p.push_back({"area light", false, "emitter_points = 0 leaves the area emitters out", true});
+    } else if (area) {
+        p.push_back({"emitter points", true,
+                     std::to_string(mSettings.getInt(kEmitterPoints)) + " point(s) on the area emitters per frame, by "
+                         "power, x 6 faces of " + std::to_string(mSettings.getInt(kEmitterShadowResolution)) +
+                         "^2: their direct light, and their one-bounce light at the bundles' hits (bundle strategy "
+                         "alone: no VPL leaves an area emitter yet)"});
+        if (strategy == "vpl") {
+            p.push_back({"area light one-bounce", false,
+                         "strategy = vpl: no VPL leaves an area emitter yet, so their one-bounce light is left out",
+                         true});
+        }
+        if (twoBounce) {
+            p.push_back({"area light two-bounce", false,
+                         "two-bounce light from area emitters needs VPLs from them: not yet, layer indirect2 "
+                         "lacks it",
+                         true});
+        }
     }
     return p;
 }
@@ -250,9 +281,13 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     const auto vplSide = static_cast<VkDeviceSize>(mSettings.getInt(kVplShadowResolution));
     const std::uint32_t strategy = strategyOf(mSettings.getString(kStrategy));
     const bool twoBounce = mSettings.getInt(kBounces) >= 2;
+    const auto points = static_cast<std::uint32_t>(mSettings.getInt(kEmitterPoints));
+    const auto pointSide = static_cast<std::uint32_t>(mSettings.getInt(kEmitterShadowResolution));
+    const bool areaLit = scene.features().emissiveMeshes && points > 0;
     ctx->requireDeviceMemory(VkDeviceSize(width) * height * gpu::CameraPass::bytesPerPixel(shader::kBidirAccumLayers) +
                                  shadowSide * shadowSide * 4 * (6 * scene.lights.size() + 1) +
-                                 vplSide * vplSide * 4 * (6 * pairs + 1),
+                                 vplSide * vplSide * 4 * (6 * pairs + 1) +
+                                 (areaLit ? gpu::EmitterPointPass::bytesFor(points, pointSide) : 0),
                              "bidir at " + std::to_string(width) + "x" + std::to_string(height));
     auto g = std::make_unique<Gpu>();
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
@@ -262,6 +297,7 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     const auto vplCubes = std::max<std::uint32_t>(pairs, g->shadows->lightCount());
     g->vplShadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(vplSide), vplCubes);
     g->vpls = std::make_unique<VplSampler>(scene);
+    g->emitterPoints = std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene, areaLit ? points : 0u, pointSide);
     if (mSettings.getString(kVplSource) == "rsm" && g->shadows->lightCount() > 0) {
         g->rsm = std::make_unique<ReflectiveShadowMap>(*ctx, *g->scene,
                                                        static_cast<std::uint32_t>(mSettings.getInt(kRsmResolution)));
@@ -277,7 +313,11 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->environment = std::make_unique<EnvironmentBundles>(
         *ctx, scene, static_cast<std::uint32_t>(mSettings.getInt(kEnvironmentBundles)), 0.1f);
     g->textures = std::make_unique<gpu::PackedTextures>(*ctx, scene);
-    const bool pairBundles = (strategy != shader::kBidirStrategyVpl || twoBounce) && g->shadows->lightCount() > 0;
+    // Point/spot lights: bundles for the bundle strategy and the two-bounce term; area emitters (no
+    // VPL from them yet): for the bundle strategy's one-bounce term.
+    const bool pairBundles = (g->shadows->lightCount() > 0 && (strategy != shader::kBidirStrategyVpl || twoBounce)) ||
+                             (areaLit && strategy != shader::kBidirStrategyVpl);
+    g->pairBundles = pairBundles;
 
     if (pairBundles || g->environment->count() > 0) {
         if (!ctx->geometryShader()) {
@@ -299,7 +339,7 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
         }
     }
     // A scope per bundle build and per VPL cube, plus the camera, light and evaluation passes.
-    constexpr std::uint32_t kOtherScopes = 8;
+    constexpr std::uint32_t kOtherScopes = 9;
     g->timer = vk::GpuTimer(*ctx, 2 * pairs + g->environment->count() + kOtherScopes);
 
     VkDevice device = ctx->device();
@@ -309,6 +349,8 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
                  {shader::kBidirBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
                  {shader::kBidirBindingVplMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
                  {shader::kBidirBindingVpls, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kBidirBindingEmitterPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                 {shader::kBidirBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
                  {shader::kBidirBindingRsmCdf, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                  {shader::kBidirBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                  {shader::kBidirBindingTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
@@ -323,6 +365,9 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
         .image(shader::kBidirBindingVplMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->vplShadows->maps().view(),
                VK_IMAGE_LAYOUT_GENERAL)
         .buffer(shader::kBidirBindingVpls, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->vplBuffer.get())
+        .buffer(shader::kBidirBindingEmitterPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->emitterPoints->buffer())
+        .image(shader::kBidirBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->emitterPoints->maps().view(),
+               VK_IMAGE_LAYOUT_GENERAL)
         .buffer(shader::kBidirBindingRsmCdf, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->rsm ? g->rsm->cdf() : g->noRsm.get())
         .buffer(shader::kBidirBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->environment->buffer())
         .buffer(shader::kBidirBindingTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->textures->buffer())
@@ -459,13 +504,14 @@ void BidirMode::iterate(const IterationInfo& info) {
 
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
     const bool renderShadows = g.shadows->refreshFor(*mContext, *g.scene, info.time);
+    g.emitterPoints->prepare(info.seed, mIterations, info.time);
     shader::BidirPush push{};
     if (g.pool) {
         push.pool = g.pool->view();
     }
     push.width = width;
     push.height = height;
-    push.pairs = lightCount > 0 ? pairs : 0u;
+    push.pairs = lightCount > 0 || g.pairBundles ? pairs : 0u;
     push.lightCount = lightCount;
     push.shadowResolution = g.shadows->resolution();
     push.vplResolution = g.vplShadows->resolution();
@@ -487,6 +533,7 @@ void BidirMode::iterate(const IterationInfo& info) {
         if (renderShadows) {
             g.shadows->record(cmd, info.time, &g.timer);
         }
+        g.emitterPoints->record(cmd, info.time, &g.timer);
         for (std::uint32_t k = 0; useVpls && k < pairs; ++k) {
             if (vpls[k].valid) {
                 g.vplShadows->record(cmd, vpls[k].cubeCentre, k, info.time, &g.timer);

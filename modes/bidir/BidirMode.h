@@ -117,6 +117,8 @@ public:
     static constexpr const char* kRsmResolution = "rsm_resolution";
     static constexpr const char* kEnvironmentBundles = "environment_bundles";
     static constexpr const char* kFit = "fit";
+    static constexpr const char* kEmitterPoints = "emitter_points";
+    static constexpr const char* kEmitterShadowResolution = "emitter_shadow_resolution";
     static constexpr const char* kInterleave = "interleave";
     static constexpr const char* kInterleaveFilter = "interleave_filter";
     static constexpr const char* kTemporal = "temporal";

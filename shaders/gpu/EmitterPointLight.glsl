@@ -1,9 +1,13 @@
 // Light from the emitter points of this iteration (core/gpu/EmitterPointPass.h;
 // shaders/shared/EmitterPoints.h has the estimator and the densities), reflected at x toward wo.
 // Define BL_EMITTER_POINTS_SET and BL_EMITTER_POINTS_BINDING (the GpuEmitterPoint buffer) and
-// include gpu/ShadowCubeLookup.glsl with BL_SHADOW_BINDING_2 = the points' cubes (map 1) first.
+// include gpu/ShadowCubeLookup.glsl with BL_SHADOW_BINDING_2 = the points' cubes (map 1) first,
+// or define BL_EMITTER_POINTS_MAP to the map that holds them (bidir: 2, BL_SHADOW_BINDING_3).
 #ifndef BL_GPU_EMITTER_POINT_LIGHT_GLSL
 #define BL_GPU_EMITTER_POINT_LIGHT_GLSL
+#ifndef BL_EMITTER_POINTS_MAP
+#define BL_EMITTER_POINTS_MAP 1u
+#endif
 #include "shared/Brdf.h"
 #include "shared/EmitterPoints.h"
 
@@ -47,7 +51,8 @@ vec3 blEmitterPointsSum(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, flo
             continue; // behind the emitting face, or lit from the side the camera does not see
         }
         float visibility =
-            blShadowVisibilityTaps(1u, kShadowCubeFaces * k, resolution, x - p.cubeCentre, n, kEmitterPointTaps);
+            blShadowVisibilityTaps(BL_EMITTER_POINTS_MAP, kShadowCubeFaces * k, resolution, x - p.cubeCentre, n,
+                                   kEmitterPointTaps);
         if (visibility <= 0.0) {
             continue;
         }

@@ -1,7 +1,8 @@
 // Visibility from cube shadow maps (core/gpu/ShadowCubePass.h): 4x4 PCF with a receiver-plane depth
 // test. Define BL_SHADOW_SET and BL_SHADOW_BINDING (where the maps are bound) before including;
 // a shader that reads a second cube image of another resolution (e.g. lights' cubes and VPLs'
-// cubes) also defines BL_SHADOW_BINDING_2 and passes map 1 to blShadowVisibilityIn.
+// cubes) also defines BL_SHADOW_BINDING_2 and passes map 1 to blShadowVisibilityIn, and a third
+// (bidir: lights, VPLs and emitter points) BL_SHADOW_BINDING_3, map 2.
 // A cube occupies six consecutive layers (CubeFaces.h order) starting at `firstLayer`: 6 l for
 // light l, or any cube ShadowCubePass::record(cmd, position, cube, ...) rendered (e.g. a VPL).
 #ifndef BL_GPU_SHADOW_CUBE_LOOKUP_GLSL
@@ -11,6 +12,9 @@
 layout(set = BL_SHADOW_SET, binding = BL_SHADOW_BINDING, r32f) uniform readonly image2DArray blShadowMaps;
 #ifdef BL_SHADOW_BINDING_2
 layout(set = BL_SHADOW_SET, binding = BL_SHADOW_BINDING_2, r32f) uniform readonly image2DArray blShadowMaps2;
+#endif
+#ifdef BL_SHADOW_BINDING_3
+layout(set = BL_SHADOW_SET, binding = BL_SHADOW_BINDING_3, r32f) uniform readonly image2DArray blShadowMaps3;
 #endif
 
 // Relative tolerance of the shadow test (receiver-plane depth against the stored distance). The
@@ -37,6 +41,11 @@ vec2 blShadowFaceTexel(vec3 d, uint face, float resolution) {
 // (BL_SHADOW_BINDING_2). A branch, not an image array: arrays of storage images indexed by a
 // non-constant need shaderStorageImageArrayDynamicIndexing, which lavapipe lacks.
 float blShadowStored(uint map, ivec2 texel, uint layer) {
+#ifdef BL_SHADOW_BINDING_3
+    if (map == 2u) {
+        return imageLoad(blShadowMaps3, ivec3(texel, int(layer))).r;
+    }
+#endif
 #ifdef BL_SHADOW_BINDING_2
     if (map != 0u) {
         return imageLoad(blShadowMaps2, ivec3(texel, int(layer))).r;

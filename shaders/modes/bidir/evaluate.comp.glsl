@@ -27,7 +27,12 @@
 #define BL_SHADOW_SET kBidirSet
 #define BL_SHADOW_BINDING kBidirBindingShadowMaps
 #define BL_SHADOW_BINDING_2 kBidirBindingVplMaps
+#define BL_SHADOW_BINDING_3 kBidirBindingEmitterShadowMaps
 #include "gpu/ShadowCubeLookup.glsl"
+#define BL_EMITTER_POINTS_SET kBidirSet
+#define BL_EMITTER_POINTS_BINDING kBidirBindingEmitterPoints
+#define BL_EMITTER_POINTS_MAP 2u
+#include "gpu/EmitterPointLight.glsl"
 
 layout(local_size_x = kBidirGroupSize, local_size_y = kBidirGroupSize) in;
 
@@ -263,6 +268,12 @@ vec3 bundleTerm(uint k, BidirVpl v, GpuMaterial mv, vec3 x, vec3 n, GpuMaterial 
         vec3 fx = bidirBrdf(m, albedo, n, d, wo, dX);
         sum += reflected * fx * (weight * weightX);
     }
+    // Area emitters (emitter points, next-event estimation at y): the bundle strategy alone, since
+    // no VPL leaves an area emitter yet; nothing to suppress against, so x's BRDF is the plain one.
+    if (blEmitterPointHeader.count > 0u) {
+        vec3 reflected = blEmitterPointsLight(y, ny, my, ay, wy, 0.0);
+        sum += reflected * bidirBrdfUnsuppressed(m, albedo, n, d, wo) * weightX;
+    }
     return sum;
 }
 
@@ -314,6 +325,7 @@ void main() {
     if (kEnvironment) {
         layers[kPathDirect] += bidirEnvironmentDirect(x, n, m, albedo, wo);
     }
+    layers[kPathDirect] += blEmitterPointsLight(x, n, m, albedo, wo, 0.0); // none where count = 0
     vec3 indirect = vec3(0.0);
     vec3 twoBounce = vec3(0.0);
     const bool bundles = kStrategy != kBidirStrategyVpl || kBounces >= 2u;
