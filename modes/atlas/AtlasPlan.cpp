@@ -1,12 +1,13 @@
 // Mode atlas's parameters and pass plan (what runs for a scene and why).
 #include "modes/atlas/AtlasMode.h"
 
+#include "modes/EmitterPointParameters.h"
 #include "scene/Scene.h"
 
 namespace bl {
 
 std::vector<ParamSpec> AtlasMode::parameters() {
-    return {
+    std::vector<ParamSpec> params{
         {kAtlasResolution, std::int64_t{512}, "texels",
          "side of an atlas page; the texel density follows from the scene's surface area", 16, 16384, {}},
         {kBundleResolution, std::int64_t{512}, "pixels", "side of each direction's bundle (frame over the bounding sphere)",
@@ -54,15 +55,13 @@ std::vector<ParamSpec> AtlasMode::parameters() {
          "gpu/EmitterPointPass.h), the exchange then carrying reflected light only; it needs interleaved transfer, no "
          "delay_indirect and no glossy transport: auto = on where those hold, on = refuse settings that break them",
          0, 0, {"auto", "on", "off"}},
-        {kEmitterPoints, std::int64_t{16}, "points", "first_shot: points drawn on the emitters per direction, by power",
-         1, 256, {}},
-        {kEmitterShadowResolution, std::int64_t{256}, "texels", "first_shot: side of each emitter point's cube face", 16,
-         4096, {}},
         {kMemoryCap, std::int64_t{0}, "MiB",
          "node storage limit of the bundle pool (0: half the largest device-local heap); a direction that needs more is "
          "refused",
          0, 1 << 20, {}},
     };
+    return withEmitterPointParameters(std::move(params), "direction",
+                                      "the first shot (first_shot), the area emitters' direct light", 1);
 }
 
 std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {

@@ -8,6 +8,7 @@
 #include "gpu/EmitterPointPass.h"
 #include "gpu/ShadowCubePass.h"
 #include "gpu/PackedTextures.h"
+#include "modes/EmitterPointParameters.h"
 #include "modes/bidir/EnvironmentBundles.h"
 #include "modes/bidir/ReflectiveShadowMap.h"
 #include "modes/bidir/VplSampler.h"
@@ -66,7 +67,7 @@ std::uint32_t strategyOf(const std::string& name) {
 } // namespace
 
 std::vector<ParamSpec> BidirMode::parameters() {
-    return {
+    std::vector<ParamSpec> params{
         {kPairs, std::int64_t{21}, "pairs", "K VPL/bundle pairs per frame ([TO12] used 21)", 1, 4096, {}},
         {kStrategy, std::string("mis"), "",
          "one-bounce strategy: vpl (light paths), bundle (camera paths) or mis (both, balance heuristic)", 0, 0,
@@ -115,17 +116,13 @@ std::vector<ParamSpec> BidirMode::parameters() {
         {kFit, std::string("visible"), "",
          "bundle frames around the camera-visible points of the frame ([TO12s] B.1) or the scene's bounding sphere", 0,
          0, {"visible", "scene"}},
-        {kEmitterPoints, std::int64_t{16}, "points",
-         "points drawn on the area emitters per frame, by power, each shadowed by a cube: direct and one-bounce light "
-         "from area emitters (0: area lights left out)",
-         0, 256, {}},
-        {kEmitterShadowResolution, std::int64_t{256}, "texels", "side of each emitter point's shadow cube face", 16,
-         4096, {}},
         {kTwoBounceClamp, 0.0, "scene radius",
          "two-bounce term only: |x1 - x2| taken as at least this fraction of the scene's bounding radius (0: off, "
          "unbiased)",
          0.0, 1.0, {}},
     };
+    return withEmitterPointParameters(std::move(params), "frame",
+                                      "direct and one-bounce light from area emitters (0: area lights left out)", 0);
 }
 
 std::unique_ptr<Mode> BidirMode::create(const Settings& settings) { return std::make_unique<BidirMode>(settings); }

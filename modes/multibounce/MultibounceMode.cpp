@@ -9,6 +9,7 @@
 #include "gpu/EmitterPointPass.h"
 #include "gpu/PackedTextures.h"
 #include "gpu/ShadowCubePass.h"
+#include "modes/EmitterPointParameters.h"
 #include "modes/multibounce/SurfacePoints.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
@@ -34,7 +35,7 @@ DirectionSequence sequenceOf(const std::string& name) {
 } // namespace
 
 std::vector<ParamSpec> MultibounceMode::parameters() {
-    return {
+    std::vector<ParamSpec> params{
         {kBundleCount, std::int64_t{64}, "bundles", "resident omnidirectional bundles per iteration (K); paths pick one per bounce",
          1, 4096, {}},
         {kPathsPerPixel, std::int64_t{4}, "paths",
@@ -66,12 +67,9 @@ std::vector<ParamSpec> MultibounceMode::parameters() {
          "area emitters after a bounce: mis (bundle hits and emitter points by the balance heuristic), bundles "
          "(bundle hits alone, as [TO12]), points (emitter points alone)",
          0, 0, {"mis", "bundles", "points"}},
-        {kEmitterPoints, std::int64_t{16}, "points",
-         "points drawn on the area emitters per iteration, by power, each shadowed by a cube (emitter_sampling mis, points)",
-         1, 256, {}},
-        {kEmitterShadowResolution, std::int64_t{256}, "texels", "side of each emitter point's shadow cube face", 16,
-         4096, {}},
     };
+    return withEmitterPointParameters(std::move(params), "iteration",
+                                      "next-event estimation at every path vertex (emitter_sampling mis, points)", 1);
 }
 
 std::unique_ptr<Mode> MultibounceMode::create(const Settings& settings) {

@@ -1,6 +1,7 @@
 #include "modes/raster/RasterMode.h"
 
 #include "base/Error.h"
+#include "modes/EmitterPointParameters.h"
 #include "sampling/PixelSamples.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
@@ -15,17 +16,13 @@
 namespace bl {
 
 std::vector<ParamSpec> RasterMode::parameters() {
-    return {
+    std::vector<ParamSpec> params{
         {kShadowResolution, std::int64_t{1024}, "texels",
          "side of each shadow cube face ([TO12] used 1024^2 per face for direct light)", 16, 8192, {}},
-        {kEmitterPoints, std::int64_t{16}, "points",
-         "points drawn on the area emitters per iteration, by power, each shadowed by a cube (0: area lights left out; "
-         "at most 256: 6 layers each of one image, which devices hold to 2048 layers)",
-         0, 256, {}},
-        {kEmitterShadowResolution, std::int64_t{256}, "texels", "side of each emitter point's shadow cube face", 16,
-         4096, {}},
         {kJitter, true, "", "move the sample inside the pixel (box filter; seed 0 starts at the centre, other seeds shift the sequence)", 0, 1, {}},
     };
+    return withEmitterPointParameters(std::move(params), "iteration",
+                                      "direct light from area emitters (0: area lights left out)", 0);
 }
 
 std::unique_ptr<Mode> RasterMode::create(const Settings& settings) {

@@ -74,18 +74,9 @@ TEST_F(Atlas, CornellMatchesReference) {
     const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=128", "view_samples=16",
                                             "first_shot=off"};
     const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
-    Image reflected = reference.radiance();
-    const Image& emitted = bl::test::layerOf(reference, "emitted");
-    for (std::size_t p = 0; p < reflected.pixelCount(); ++p) reflected.pixels()[p] -= emitted.pixels()[p];
-    std::vector<double> means;
+    const Image reflected = reflectedLight(reference);
     double side = 0.0;
-    for (std::uint32_t seed : stats::seeds(kSeeds)) {
-        const ImageSet out = resolveSeed(s, kDirections, settings, seed, side);
-        Image light = out.radiance();
-        const Image& seen = bl::test::layerOf(out, "emitted");
-        for (std::size_t p = 0; p < light.pixelCount(); ++p) light.pixels()[p] -= seen.pixels()[p];
-        means.push_back(lumaMean(light));
-    }
+    const std::vector<double> means = reflectedMeans(s, kDirections, settings, kSeeds, side);
     const bias::Deficit deficit = bias::interleavedDeficit(reference, kDirections, kWeighting, kCornellAlbedo, 0);
     const bias::Bracket b = bias::bracket(deficit, bias::texelBias(s, reflected, side));
     std::printf("cornell: interleaved deficit %.5f to %.5f: expected %.4f +- %.4f of the reference\n", deficit.least,
@@ -112,18 +103,9 @@ TEST_F(Atlas, EnvironmentAtListEndsMatchesReference) {
     constexpr double kBlocksAlbedo = 0.725;
     const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=128", "view_samples=16"};
     const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
-    Image reflected = reference.radiance();
-    const Image& emitted = bl::test::layerOf(reference, "emitted");
-    for (std::size_t p = 0; p < reflected.pixelCount(); ++p) reflected.pixels()[p] -= emitted.pixels()[p];
-    std::vector<double> means;
+    const Image reflected = reflectedLight(reference);
     double side = 0.0;
-    for (std::uint32_t seed : stats::seeds(kSkySeeds)) {
-        const ImageSet out = resolveSeed(s, kDirections, settings, seed, side);
-        Image light = out.radiance();
-        const Image& seen = bl::test::layerOf(out, "emitted");
-        for (std::size_t p = 0; p < light.pixelCount(); ++p) light.pixels()[p] -= seen.pixels()[p];
-        means.push_back(lumaMean(light));
-    }
+    const std::vector<double> means = reflectedMeans(s, kDirections, settings, kSkySeeds, side);
     const bias::Deficit deficit = bias::interleavedDeficit(reference, kDirections, kWeighting, kBlocksAlbedo, 1);
     const bias::Bracket b = bias::bracket(deficit, bias::texelBias(s, reflected, side));
     std::printf("sky: interleaved deficit %.5f to %.5f: expected %.4f +- %.4f of the reference\n", deficit.least,

@@ -5,6 +5,7 @@
 #include "modes/Registry.h"
 #include "modes/atlas/AtlasBias.h"
 #include "modes/atlas/AtlasMode.h"
+#include "modes/reference/ReferenceTestSupport.h"
 #include "scene/SceneLoader.h"
 #include "support/Statistics.h"
 #include "support/TestFiles.h"
@@ -39,6 +40,11 @@ protected:
         return mode;
     }
 
+    // Per seed, the luma mean of the light reflected after `directions` (reflectedLight), and the
+    // atlas's texel side into `side`.
+    std::vector<double> reflectedMeans(const Scene& scene, std::uint32_t directions,
+                                       const std::vector<std::string>& settings, std::uint32_t seeds, double& side);
+
     // One seed's run at `directions`: its images (checked finite), and the atlas's texel side into
     // `side` on the first call (the atlas does not depend on the seed).
     ImageSet resolveSeed(const Scene& scene, std::uint32_t directions, const std::vector<std::string>& settings,
@@ -50,6 +56,15 @@ protected:
         return out;
     }
 };
+
+// The light an image set shows reflected: radiance less the emitted layer (emitters and the
+// background seen directly, which the view samples rather than the exchange).
+inline Image reflectedLight(const ImageSet& set) {
+    Image light = set.radiance();
+    const Image& emitted = bl::test::layerOf(set, "emitted");
+    for (std::size_t p = 0; p < light.pixelCount(); ++p) light.pixels()[p] -= emitted.pixels()[p];
+    return light;
+}
 
 inline Scene loadSmall(const std::string& path, int resolution) {
     Scene s = loadScene(bl::test::sourcePath(path));
@@ -74,5 +89,15 @@ inline void expectSeedsAgree(const std::vector<double>& perSeed, double expected
     EXPECT_TRUE(stats::agrees(s, expected, tolerance, what));
 }
 
+
+inline std::vector<double> Atlas::reflectedMeans(const Scene& scene, std::uint32_t directions,
+                                                 const std::vector<std::string>& settings, std::uint32_t seeds,
+                                                 double& side) {
+    std::vector<double> means;
+    for (std::uint32_t seed : stats::seeds(seeds)) {
+        means.push_back(lumaMean(reflectedLight(resolveSeed(scene, directions, settings, seed, side))));
+    }
+    return means;
+}
 
 } // namespace bl::test::atlasmode

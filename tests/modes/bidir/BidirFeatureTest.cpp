@@ -150,6 +150,41 @@ TEST_F(Bidir, AreaLightByEmitterPointsConvergesToReferenceLayers) {
     EXPECT_EQ(indirect2, 0.0);
 }
 
+// A box lit by both its area emitter and a point light: the emitter points' light adds to the point
+// light's in every layer (same seed: the same VPLs, bundles and emitter points on every side), so
+// direct and indirect1 of both lit = area alone + point alone to float rounding. Mutations: the
+// bundle term's emitter light only where there are no point lights, or the VPL strategy's weight
+// applied to it, break the sum.
+TEST_F(Bidir, AreaAndPointLightsAdd) {
+    Scene area = loadScene(bl::test::sourcePath("data/cornell-box/cornell.toml"));
+    area.camera.resolution = {16, 16};
+    Light point;
+    point.position = {278.0f, 400.0f, 279.5f};
+    point.intensity = glm::vec3(20000.0f);
+    Scene both = area;
+    both.lights.push_back(point);
+    Scene pointOnly = both;
+    for (Mesh& m : pointOnly.meshes) m.emission = glm::vec3(0.0f);
+    const auto means = [&](const Scene& s) {
+        std::vector<std::string> settings = kCommon;
+        settings.insert(settings.end(), {"strategy=mis", "bounces=1"});
+        std::unique_ptr<Mode> mode = createMode("bidir", settings);
+        mode->setScene(s, &ctx());
+        for (std::uint32_t f = 0; f < 2; ++f) mode->iterate({f, 5, 0.0});
+        const ImageSet out = mode->resolve();
+        return glm::dvec2(imageMean(regionMeans(bl::test::layerOf(out, "direct"))),
+                          imageMean(regionMeans(bl::test::layerOf(out, "indirect1"))));
+    };
+    const glm::dvec2 a = means(area), p = means(pointOnly), ab = means(both);
+    std::printf("direct: area %.6g + point %.6g = %.6g, both %.6g; indirect1: %.6g + %.6g = %.6g, both %.6g\n", a.x,
+                p.x, a.x + p.x, ab.x, a.y, p.y, a.y + p.y, ab.y);
+    for (int i = 0; i < 2; ++i) {
+        EXPECT_GT(a[i], 0.05 * p[i]) << i;
+        EXPECT_GT(p[i], 0.05 * a[i]) << i;
+        EXPECT_NEAR(ab[i], a[i] + p[i], 1e-4 * (a[i] + p[i])) << (i ? "indirect1" : "direct");
+    }
+}
+
 // Bundle frames fitted to the points the G-buffer sees ([TO12s] B.1) drop no sample (every camera
 // point falls inside every bundle, jittered G-buffer included) and use smaller pixels than the
 // scene's sphere for the same bundle_resolution; the convergence tests run with this fit (the
