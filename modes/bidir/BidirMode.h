@@ -138,6 +138,9 @@ public:
     const Settings& settings() const override { return mSettings; }
     PassTimes timings() const override;
     std::vector<PlannedPass> plan(const Scene& scene) const override;
+    // Whether glossy suppression runs for these settings on a scene with these features
+    // (BidirPlan.cpp): only where it can change something.
+    static bool suppressesGlossy(const Settings& settings, const SceneFeatures& f);
     TradeSettings trades() const override;
 
 private:

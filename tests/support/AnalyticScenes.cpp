@@ -73,4 +73,15 @@ float polygonIrradiance(glm::vec3 x, glm::vec3 n, const std::vector<glm::vec3>& 
     return static_cast<float>(0.5 * radiance * std::abs(sum));
 }
 
+AreaAndPointLit areaAndPointLit(const Scene& areaLit, glm::vec3 lightPosition) {
+    AreaAndPointLit out{areaLit, areaLit, areaLit};
+    Light point;
+    point.position = lightPosition;
+    point.intensity = glm::vec3(20000.0f);
+    out.both.lights.push_back(point);
+    out.pointOnly = out.both;
+    for (Mesh& m : out.pointOnly.meshes) m.emission = glm::vec3(0.0f);
+    return out;
+}
+
 } // namespace bl::test

@@ -28,4 +28,12 @@ float pointLitFloorRadiance(glm::vec3 p, glm::vec3 light, float intensity, float
 // the caller knows which side emits).
 float polygonIrradiance(glm::vec3 x, glm::vec3 n, const std::vector<glm::vec3>& polygon, float radiance);
 
+// An area-lit scene (its emitters the only light) as three scenes for additivity tests: itself,
+// the same with a point light of 20000 W/sr at `lightPosition` added (`both`), and `both` with
+// every emission off (`pointOnly`). A mode linear in its lights renders both = area + pointOnly.
+struct AreaAndPointLit {
+    Scene area, pointOnly, both;
+};
+AreaAndPointLit areaAndPointLit(const Scene& areaLit, glm::vec3 lightPosition);
+
 } // namespace bl::test

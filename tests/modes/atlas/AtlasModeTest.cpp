@@ -12,6 +12,7 @@
 #include "base/Error.h"
 #include "image/Metrics.h"
 #include "modes/reference/ReferenceTestSupport.h"
+#include "support/AnalyticScenes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -278,14 +279,9 @@ TEST_F(Atlas, FirstShotRefusesTransfersItDoesNotFeed) {
 // (both = area only), a descriptor pool one storage image short (the set of the both-lit scene
 // fails to allocate).
 TEST_F(Atlas, FirstShotAddsToPointLights) {
-    Scene areaOnly = loadSmall("data/cornell-box/cornell.toml", 16);
-    Light point;
-    point.position = {278.0f, 400.0f, 279.5f};
-    point.intensity = glm::vec3(20000.0f);
-    Scene both = areaOnly;
-    both.lights.push_back(point);
-    Scene pointOnly = both;
-    for (Mesh& m : pointOnly.meshes) m.emission = glm::vec3(0.0f);
+    const bl::test::AreaAndPointLit lit =
+        bl::test::areaAndPointLit(loadSmall("data/cornell-box/cornell.toml", 16), {278.0f, 400.0f, 279.5f});
+    const Scene &areaOnly = lit.area, &pointOnly = lit.pointOnly, &both = lit.both;
     const std::vector<std::string> settings{"atlas_resolution=32", "bundle_resolution=32", "first_shot=on"};
     const auto directMean = [&](const Scene& s) {
         const ImageSet out = run(s, 4, settings)->resolve();

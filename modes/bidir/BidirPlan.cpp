@@ -1,0 +1,174 @@
+// Mode bidir's parameters and pass plan (what runs for a scene and why).
+#include "modes/bidir/BidirMode.h"
+
+#include "modes/EmitterPointParameters.h"
+#include "scene/Scene.h"
+
+#include <string>
+
+namespace bl {
+
+std::vector<ParamSpec> BidirMode::parameters() {
+    std::vector<ParamSpec> params{
+        {kPairs, std::int64_t{21}, "pairs", "K VPL/bundle pairs per frame ([TO12] used 21)", 1, 4096, {}},
+        {kStrategy, std::string("mis"), "",
+         "one-bounce strategy: vpl (light paths), bundle (camera paths) or mis (both, balance heuristic)", 0, 0,
+         {"vpl", "bundle", "mis"}},
+        {kBundleResolution, std::int64_t{256}, "pixels", "side of each bundle ([TO12]: 256^2)", 16, 8192, {}},
+        {kShadowResolution, std::int64_t{1024}, "texels", "face side of the lights' shadow cubes ([TO12]: 1024^2)",
+         16, 8192, {}},
+        {kVplShadowResolution, std::int64_t{256}, "texels", "face side of each VPL's shadow cube ([TO12]: 256^2)", 16,
+         8192, {}},
+        {kVplShadowTaps, std::int64_t{4}, "taps per side",
+         "PCF taps a side of the VPL cubes' lookups (4: 4x4 like the lights'; fewer: faster, VPL shadows filtered "
+         "differently)",
+         1, 4, {}},
+        {kDirections, std::string("random"), "", "bundle direction sequence", 0, 0, {"random", "halton"}},
+        {kMemoryCap, std::int64_t{2048}, "MiB", "node storage limit of the bundle pool; a frame that needs more is refused",
+         1, 1 << 20, {}},
+        {kBounces, std::int64_t{2}, "", "indirect bounces: 1 (Eq. 3-6) or 2 (also Eq. 7-8, layer indirect2)", 1, 2, {}},
+        {kSuppression, std::string("none"), "",
+         "glossy artifact suppression ([TO12] section 5): none (unbiased), clamp (the lobe truncated at d/m) or "
+         "roughness (its exponent lowered to that peak, Eq. 10-12)",
+         0, 0, {"none", "clamp", "roughness"}},
+        {kVplSource, std::string("rsm"), "",
+         "VPLs from reflective shadow cubes on the GPU (rsm, [TO12] 4.1) or light rays traced on the CPU (traced)", 0, 0,
+         {"rsm", "traced"}},
+        {kRsmResolution, std::int64_t{256}, "texels", "face side of the reflective shadow cubes ([TO12]: 256^2)", 4,
+         4096, {}},
+        {kEnvironmentBundles, std::int64_t{21}, "bundles",
+         "bundles per frame for direct environment light (Eq. 2 importance directions; none without an environment)",
+         0, 4096, {}},
+        {kSuppressionNeighbours, 16.0, "samples", "m' of the suppression's neighbour count m = m' f cos / D ([TO12]: 16)",
+         1e-3, 1e6, {}},
+        {kInterleave, std::int64_t{1}, "sub-images per side",
+         "spatial interleaving: n x n sub-images, each with every n^2-th pair, gathered and blurred ([TO12s] A.1; 1: off)",
+         1, 16, {}},
+        {kInterleaveFilter, std::string("on"), "", "geometry-aware blur of the gathered indirect light", 0, 0,
+         {"on", "off"}},
+        {kTemporal, std::string("off"), "",
+         "temporal interleaving: 2x2 sub-pixel caches, round-robin, reverse reprojection ([TO12s] A.2)", 0, 0,
+         {"on", "off"}},
+        {kReprojection, std::string("auto"), "",
+         "temporal caches: auto warps into the caches' cameras only for an animated camera; always warps", 0, 0,
+         {"auto", "always"}},
+        {kTemporalDepthVariance, 1e-4, "log-depth^2",
+         "2 sigma^2 of the temporal caches' log-depth Gaussian h = exp(-log^2(z/z_c) / (2 sigma^2)) ([TO12s]: 1e-4)",
+         1e-8, 1e4, {}},
+        {kFit, std::string("visible"), "",
+         "bundle frames around the camera-visible points of the frame ([TO12s] B.1) or the scene's bounding sphere", 0,
+         0, {"visible", "scene"}},
+        {kTwoBounceClamp, 0.0, "scene radius",
+         "two-bounce term only: |x1 - x2| taken as at least this fraction of the scene's bounding radius (0: off, "
+         "unbiased)",
+         0.0, 1.0, {}},
+    };
+    return withEmitterPointParameters(std::move(params), "frame",
+                                      "direct and one-bounce light from area emitters (0: area lights left out)", 0);
+}
+
+// Suppression runs only where it can change something: a glossy material and indirect light.
+// Skipped, the shader takes blEvalBrdf's path it would take anyway for Lambertian materials.
+bool BidirMode::suppressesGlossy(const Settings& settings, const SceneFeatures& f) {
+    return settings.getString(kSuppression) != "none" && f.glossy && f.shadowCastingLights() > 0;
+}
+
+std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
+    const SceneFeatures f = scene.features();
+    const std::string strategy = mSettings.getString(kStrategy);
+    const auto pairs = std::to_string(mSettings.getInt(kPairs));
+    const bool lights = f.shadowCastingLights() > 0;
+    const bool twoBounce = mSettings.getInt(kBounces) >= 2;
+    std::vector<PlannedPass> p;
+    p.push_back({"gbuffer", true, std::to_string(f.triangles) + " triangles, jittered every frame"});
+    p.push_back({"light shadow cubes", lights,
+                 lights ? std::to_string(f.shadowCastingLights()) + " light(s) x 6 faces; " +
+                              (f.animated ? "every frame (animated scene)" : "once (static scene)")
+                        : "no point or spot lights"});
+    const bool vpl = lights && (strategy != "bundle" || twoBounce);
+    p.push_back({"VPL rays + VPL shadow cubes", vpl,
+                 !lights ? "no point or spot light to start light paths"
+                 : vpl   ? pairs + " VPLs per frame (" +
+                             (mSettings.getString(kVplSource) == "rsm"
+                                  ? "GPU, " + std::to_string(mSettings.getInt(kRsmResolution)) + "^2 reflective shadow cube per light"
+                                  : std::string("CPU rays, Embree")) +
+                             "), a " +
+                             std::to_string(mSettings.getInt(kVplShadowResolution)) + "^2 cube each" +
+                             (strategy == "bundle" ? " (for the two-bounce term only)" : "")
+                         : "strategy = bundle with bounces = 1 uses no VPL"});
+    const bool area = f.emissiveMeshes && mSettings.getInt(kEmitterPoints) > 0;
+    const bool bundles = (lights && (strategy != "vpl" || twoBounce)) || (area && strategy != "vpl");
+    p.push_back({"bundle builds", bundles,
+                 !lights && !area ? "no point, spot or area light: nothing for camera paths to reach"
+                 : !lights && strategy == "vpl" ? "strategy = vpl: area emitters' one-bounce light needs the bundles"
+                 : bundles ? pairs + " bundles of " + std::to_string(mSettings.getInt(kBundleResolution)) +
+                                 "^2 with hit payload per frame, around the " +
+                                 (mSettings.getString(kFit) == "visible" ? "visible points" : "scene's sphere") +
+                                 (strategy == "vpl" ? " (for the two-bounce term only)" : "")
+                           : "strategy = vpl with bounces = 1 uses no bundle"});
+    p.push_back({"evaluate", true, lights ? "direct + one-bounce (" + strategy + ")" +
+                                                (twoBounce ? " + two-bounce" : "") + " at every visible point"
+                                   : area ? (strategy == "vpl" ? "no point/spot light: area emitters' direct light"
+                                                               : "no point/spot light: area emitters' direct and "
+                                                                 "one-bounce light")
+                                          : f.environment && mSettings.getInt(kEnvironmentBundles) > 0
+                                              ? "no point/spot light: emitters, environment background and direct "
+                                                "environment light by bundles"
+                                              : "no point/spot light: emitters and environment background only"});
+    const std::string suppression = mSettings.getString(kSuppression);
+    const bool suppress = suppressesGlossy(mSettings, f);
+    p.push_back({"glossy suppression (" + suppression + ")", suppress,
+                 suppress               ? "sample densities (Eq. 13-17) at the glossy vertices of indirect paths"
+                 : suppression == "none" ? "suppression = none"
+                 : !lights              ? "no indirect light without point/spot lights"
+                                        : "no glossy material: every BRDF is Lambertian, nothing to suppress"});
+    const auto n = mSettings.getInt(kInterleave);
+    const bool filter = mSettings.getString(kInterleaveFilter) == "on";
+    p.push_back({"split + gather (interleave " + std::to_string(n) + ")", n > 1,
+                 n > 1 ? std::to_string(n * n) + " sub-images (pixels " + std::to_string(n) + " apart in x and y), " +
+                             std::to_string(mSettings.getInt(kPairs) / (n * n)) + "+ pairs each"
+                       : "interleave = 1"});
+    p.push_back({"geometry-aware filter", n > 1 && filter,
+                 n == 1 ? "interleave = 1: nothing to recombine"
+                 : filter ? std::to_string(n) + "x" + std::to_string(n) + " neighbourhood, normal and depth weights"
+                          : "interleave_filter = off"});
+    const bool temporal = mSettings.getString(kTemporal) == "on";
+    p.push_back({"temporal caches", temporal, temporal ? "4 sub-pixel caches, one rewritten per frame" : "temporal = off"});
+    const bool reproject = temporal && (scene.camera.animated() || mSettings.getString(kReprojection) == "always");
+    p.push_back({"reverse reprojection", reproject,
+                 !temporal   ? "temporal = off"
+                 : reproject ? (scene.camera.animated() ? "the camera is animated: each cache warped into its camera"
+                                                         : "reprojection = always")
+                             : "static camera: every cache's warp is the identity (moving meshes still fail the "
+                               "log-depth test), the image is the same"});
+    const auto envBundles = mSettings.getInt(kEnvironmentBundles);
+    p.push_back({"environment bundles", f.environment && envBundles > 0,
+                 !f.environment   ? "no environment"
+                 : envBundles > 0 ? std::to_string(envBundles) + " bundles per frame by Eq. 2 importance: direct "
+                                                                 "environment light (indirect: not yet)"
+                                  : "environment_bundles = 0: the environment lights nothing",
+                 f.environment && envBundles == 0});
+    if (f.emissiveMeshes && !area) {
+        p.push_back({"area light", false, "emitter_points = 0 leaves the area emitters out", true});
+    } else if (area) {
+        p.push_back({"emitter points", true,
+                     std::to_string(mSettings.getInt(kEmitterPoints)) + " point(s) on the area emitters per frame, by "
+                         "power, x 6 faces of " + std::to_string(mSettings.getInt(kEmitterShadowResolution)) +
+                         "^2: their direct light, and their one-bounce light at the bundles' hits (bundle strategy "
+                         "alone: no VPL leaves an area emitter yet)"});
+        if (strategy == "vpl") {
+            p.push_back({"area light one-bounce", false,
+                         "strategy = vpl: no VPL leaves an area emitter yet, so their one-bounce light is left out",
+                         true});
+        }
+        if (twoBounce) {
+            p.push_back({"area light two-bounce", false,
+                         "two-bounce light from area emitters needs VPLs from them: not yet, layer indirect2 "
+                         "lacks it",
+                         true});
+        }
+    }
+    return p;
+}
+
+} // namespace bl
