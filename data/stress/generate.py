@@ -31,6 +31,8 @@ CORNELL_MESHES = [("floor", "white"), ("ceiling", "white"), ("backwall", "white"
                   ("rightwall", "green"), ("shortblock", "white"), ("tallblock", "white")]
 CORNELL_MATERIALS = [("white", [0.725, 0.71, 0.68]), ("red", [0.63, 0.065, 0.05]), ("green", [0.14, 0.45, 0.091])]
 CORNELL_LIGHT = (278.0, 500.0, 279.5)
+# The area-lit Cornell box (data/cornell-box/cornell.toml): its light, 0.1 mm below the ceiling, emits radiance.
+CORNELL_EMITTER = ("light", [0.78, 0.78, 0.78], [17.0, 12.0, 4.0])
 CORNELL_INTENSITY = 50000.0
 CORNELL_SIZE = 548.8  # room height (mm): "1e-4 of the room" above the floor is 1e-4 of it
 CORNELL_CAMERA = {"position": (278.0, 273.0, -800.0), "target": (278.0, 273.0, 0.0), "fov": 39.3077}
@@ -129,8 +131,10 @@ def materials_block(materials):
     return out
 
 
-def mesh_block(file, material, scale=None, translate=None):
+def mesh_block(file, material, scale=None, translate=None, emission=None):
     out = "\n[[mesh]]\nfile     = \"meshes/%s.obj\"\nmaterial = \"%s\"\n" % (file, material)
+    if emission is not None:
+        out += "emission = %s\n" % vec(emission)
     if scale is not None:
         out += "scale    = %s\n" % g(scale)
     if translate is not None:
@@ -147,20 +151,27 @@ SKY_BLOCK = "\n[environment]\nradiance = [1.0, 1.0, 1.0]\n"
 
 
 def cornell(w, name, comment, meshes=None, extra=(), scale=1.0, offset=0.0, light=CORNELL_LIGHT, sky=True,
-            floor="white"):
+            floor="white", area=False):
     """The Cornell box scene NAME.toml (and NAME-sky.toml): `meshes` maps a Cornell mesh to the file
     that replaces it, `extra` adds (file, material) meshes; scale s and offset d move everything as
-    x -> s x + d (lights' intensity times s^2, so the image stays the same)."""
+    x -> s x + d (lights' intensity times s^2, so the image stays the same). area: lit by the box's
+    area emitter (radiance, unchanged by s) instead of the point light, and no sky twin."""
     meshes = meshes or {}
     t = lambda p: tuple(scale * x + offset for x in p)  # noqa: E731
     cam = camera_block(t(CORNELL_CAMERA["position"]), t(CORNELL_CAMERA["target"]), CORNELL_CAMERA["fov"])
-    body = materials_block([(n, a) for n, a in CORNELL_MATERIALS] + ([(floor, [0.0] * 3)] if floor != "white" else []))
+    body = materials_block([(n, a) for n, a in CORNELL_MATERIALS] + ([(floor, [0.0] * 3)] if floor != "white" else []) +
+                           ([CORNELL_EMITTER[:2]] if area else []))
     transform = dict(scale=scale if scale != 1.0 else None, translate=(offset,) * 3 if offset else None)
     for mesh, material in CORNELL_MESHES:
         body += mesh_block(meshes.get(mesh, "cornell-" + mesh), floor if mesh == "floor" else material, **transform)
     for file, material in extra:
         body += mesh_block(file, material, **transform)
     head = "".join("# " + line + "\n" for line in comment.split("\n")) + "\n"
+    if area:
+        # The emitter is never flipped: emission is one-sided, so its winding is part of the scene.
+        name_, albedo, emission = CORNELL_EMITTER
+        w.write(name + ".toml", head + cam + body + mesh_block("cornell-light", name_, emission=emission, **transform))
+        return
     w.write(name + ".toml", head + cam + body + light_block(t(light), CORNELL_INTENSITY * scale * scale))
     if sky:
         w.write(name + "-sky.toml", head + "# Under a constant unit sky, no point light (for skylight).\n\n" +
@@ -223,6 +234,8 @@ def write_cornell_cases(w):
     cornell(w, "flip-vn", "Every face wound the other way, with the original normals as vn.",
             meshes={m: "flipped-vn-" + m for m, _ in CORNELL_MESHES})
 
+    write_area_cases(w)
+
     vs, fs = read_obj("floor")
     for key, n in SLIVER_ASPECTS.items():
         svs, sfs = sliver_floor(n)
@@ -260,6 +273,23 @@ def write_cornell_cases(w):
               gvs, gfs, [up] * len(gfs)):
         cornell(w, "mesh-1m", "The floor as %d triangles (twin: base, the floor as 2)." % len(gfs),
                 meshes={"floor": "floor-1m"})
+
+
+def write_area_cases(w):
+    """The area-lit box (data/cornell-box/cornell.toml) flipped, scaled and moved: the emitter points that
+    light it (shadow cubes from points 0.1 mm below the ceiling) must follow the scene as the point light does."""
+    vs, fs = read_obj("light")
+    w.mesh("cornell-light", "Cornell box light (data/cornell-box/meshes), unchanged.", vs, fs)
+    cornell(w, "area-base", "Stress twin: the area-lit Cornell box (data/cornell-box/cornell.toml), unperturbed.",
+            area=True)
+    cornell(w, "area-flip-flat", "The area-lit box with every reflecting face wound the other way, no vn (the\n"
+            "emitter is not flipped: emission is one-sided).", meshes={m: "flipped-" + m for m, _ in CORNELL_MESHES},
+            area=True)
+    for key in ["1e-6", "1e6"]:
+        cornell(w, "area-scale-" + key, "The area-lit box scaled by %s (radiance does not scale): the image is "
+                "area-base's." % key, scale=SCALES[key], area=True)
+    cornell(w, "area-offset-1e6", "The area-lit box moved by (1e6, 1e6, 1e6) mm: the image is area-base's.",
+            offset=OFFSETS["1e6"], area=True)
 
 
 def write_room_cases(w):

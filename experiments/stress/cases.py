@@ -53,7 +53,7 @@ def seeds(mode, case):
     return CASE_SEEDS.get(case.name, MODE_SEEDS.get(mode, SEEDS))
 
 Case = collections.namedtuple("Case", "name kind scene twin sky note")
-_SKY_NA = "n/a: a point-light case (skylight renders environment light only)"
+_SKY_NA = "n/a: a point- or area-light case (skylight renders environment light only)"
 
 
 def _cases():
@@ -77,10 +77,17 @@ def _cases():
         c.append(Case("offset-" + k, "twin", "offset-" + k, "base", True, "moved by %s mm on every axis" % k))
     for k in ["1", "1e2", "1e4", "1e6"]:
         c.append(Case("phong-" + k, "reference", "phong-" + k, "phong-" + k, True, "Phong exponent " + k))
+    # Area-lit (the emitter points every GPU mode lights area emitters by): no sky twin (n/a for skylight).
+    c.append(Case("area-flip-flat", "twin", "area-flip-flat", "area-base", False,
+                  "area light; every reflecting face wound the other way"))
+    for k in ["1e-6", "1e6"]:
+        c.append(Case("area-scale-" + k, "twin", "area-scale-" + k, "area-base", False, "area light; scaled by " + k))
+    c.append(Case("area-offset-1e6", "twin", "area-offset-1e6", "area-base", False, "area light; moved by 1e6 mm"))
     c += [
         Case("mesh-1m", "twin", "mesh-1m", "base", True, "floor as 1,002,528 triangles"),
         Case("dark-box", "leak", "dark-box", "dark-box-lit", True, "closed box, the light outside"),
         Case("point-lit", "unlit", "base", None, False, "a scene lit by a point light only"),
+        Case("area-lit", "unlit", "area-base", None, False, "a scene lit by an area emitter only"),
     ]
     return c
 
@@ -88,7 +95,7 @@ def _cases():
 CASES = _cases()
 
 # The fast subset CI runs (tests/stress): the cheapest, most telling pairs, in about a minute.
-CI = [("raster", "flip-flat"), ("raster", "offset-1e6"), ("raster", "dark-box"),
+CI = [("raster", "flip-flat"), ("raster", "offset-1e6"), ("raster", "dark-box"), ("raster", "area-offset-1e6"),
       ("reference", "light-on-floor"),
       ("multibounce", "flip-flat"), ("multibounce", "wall-1e-3"), ("skylight", "point-lit")]
 

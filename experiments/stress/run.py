@@ -3,13 +3,14 @@
 against its unperturbed twin (verdicts.py), into a Markdown report.
 
     experiments/stress/run.py [--subset full|ci] [--out DIR] [--bundlelab PATH] [--report FILE]
-                              [--known FILE] [--resume]
+                              [--known FILE] [--resume] [--cases REGEX]
 
 --subset ci runs the fast subset (cases.CI) that tests/stress runs in CI. The scenes are written
 fresh into DIR/scenes by data/stress/generate.py --big; renders go to DIR/renders/MODE/, one EXR and
 log per scene and seed (--resume reuses those already there). Exit status 1 when a case fails that
 tests/stress/known_failures.txt does not list (a listed case that now passes is reported, not
-failed: take it off the list). Standard library only.
+failed: take it off the list). --cases keeps the cases whose name matches REGEX (a partial report;
+write it elsewhere than the committed one). Standard library only.
 """
 import argparse
 import collections
@@ -42,6 +43,7 @@ def parse_args(argv):
     p.add_argument("--report", default=None, help="Markdown report (default DIR/report.md)")
     p.add_argument("--known", default=os.path.join(ROOT, "tests", "stress", "known_failures.txt"))
     p.add_argument("--resume", action="store_true", help="reuse renders already in DIR/renders")
+    p.add_argument("--cases", default=None, help="only the cases whose name matches this regular expression")
     a = p.parse_args(argv)
     a.out = os.path.abspath(a.out or os.path.join(ROOT, "results", "stress" + ("-ci" if a.subset == "ci" else "")))
     a.report = a.report or os.path.join(a.out, "report.md")
@@ -213,6 +215,7 @@ def main(argv):
     subprocess.run([sys.executable, os.path.join(ROOT, "data", "stress", "generate.py"),
                     os.path.join(args.out, "scenes")] + (["--big"] if args.subset == "full" else []), check=True)
     todo = cases.CI if args.subset == "ci" else [(m, c.name) for c in cases.CASES for m in cases.MODES]
+    todo = [(m, name) for m, name in todo if args.cases is None or re.search(args.cases, name)]
     by_name = {c.name: c for c in cases.CASES}
     renderer = Renderer(args)
     known = read_known(args.known)
