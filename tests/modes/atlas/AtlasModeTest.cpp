@@ -146,16 +146,6 @@ LayerMetrics layerMetrics(const ImageSet& test, const ImageSet& reference, const
     return m;
 }
 
-// Every channel's image mean ratio of the whole image, layer `direct` and the indirect light within
-// the given tolerances of 1.
-void expectChannelMeans(const LayerMetrics& m, double all, double direct, double indirect) {
-    for (int c = 0; c < 3; ++c) {
-        EXPECT_NEAR(m.all.meanRatio[c], 1.0, all) << "channel " << c;
-        EXPECT_NEAR(m.direct.meanRatio[c], 1.0, direct) << "channel " << c;
-        EXPECT_NEAR(m.indirect.meanRatio[c], 1.0, indirect) << "channel " << c;
-    }
-}
-
 } // namespace
 
 // The Cornell box lit by a point light only ([HHGM10] section 6.5 hybrid): its light reaches the
@@ -297,24 +287,33 @@ TEST_F(Atlas, FirstShotAddsToPointLights) {
     EXPECT_NO_THROW(bounce->setScene(pointOnly, &ctx()));
 }
 
-// Delayed indirect light on the Cornell box (area light): with delay_indirect the one-bounce
-// estimate is light of two segments and goes to layer `direct`, the multi-bounce estimate to
-// `rest`, so each is checked against its own reference layer (direct; indirect1 + indirect2 +
-// rest). 64 of 384 directions direct only, 32^2 pixels: image 0.998-1.002 per channel, direct
-// 1.003-1.012, indirect 1.007-1.010, relMSE 0.012 (0.026 with j^k weights in the one-bounce
-// channel too). Mutations: the multi-bounce normalization of
-// the furnace test (indirect 0.37-0.43), emitters into the multi-bounce channel too (indirect
-// 2.9-3.5), the one-bounce estimate shown in `rest` (direct 0).
-TEST_F(Atlas, CornellDelayedIndirectMatchesReferenceLayers) {
-    Scene s = loadSmall("data/cornell-box/cornell.toml", 32);
-    std::unique_ptr<Mode> mode = run(s, 384, {"atlas_resolution=128", "bundle_resolution=192", "view_samples=16",
-                                              "delay_indirect=64", "first_shot=off"});
-    ImageSet test = mode->resolve();
-    EXPECT_EQ(test.nonFiniteSamples, 0u);
-    ImageSet reference = bl::test::renderReference(s, 1024);
-    const LayerMetrics m = layerMetrics(test, reference, "cornell delay_indirect=64");
-    expectChannelMeans(m, 0.03, 0.03, 0.05);
-    EXPECT_LT(m.all.relMse, 0.05);
+// Delayed indirect light ([HHGM10] section 6.4) on the box lit by its whole ceiling. With
+// delay_indirect = N the one-bounce channel (the emitters' light received once: a fixed sender,
+// the plain mean over all n directions) is layer `direct`: given the same directions it is the
+// first pass of bounce-by-bounce transfer (max_segments = 2), to float rounding (the exchange's
+// atomic adds): measured equal to 6 digits. The multi-bounce channel's weighting is checked where
+// its expectation is exact (FurnaceDelayedIndirectReachesTwo). Against the reference it is not
+// tested here: on this box its seeds spread 2.1% at 160 directions of its own while its bracket
+// (deficit + texel bias) is +-1.6%, so the noise gate would need ~64 seeds; the one-bounce channel
+// alone would need ~70x the directions (its texel bias, 0.6%, is its whole tolerance, and every
+// texel shares each direction's grid offset). Mutation: the one-bounce channel j^k-weighted (fails).
+TEST_F(Atlas, CornellDelayedOneBounceChannelIsTheFirstBouncePass) {
+    Scene s = loadSmall("data/cornell-box/cornell-ceiling-light.toml", kStatResolution);
+    constexpr std::uint32_t kDirections = 96, kDelay = 32;
+    const std::vector<std::string> common{"atlas_resolution=128", "bundle_resolution=128", "view_samples=4"};
+    std::vector<std::string> delayed = common, firstPass = common;
+    delayed.insert(delayed.end(), {"delay_indirect=" + std::to_string(kDelay), "first_shot=off"});
+    firstPass.insert(firstPass.end(),
+                     {"transfer=bounce", "max_segments=2", "bounce_directions=" + std::to_string(kDirections)});
+    double side = 0.0;
+    for (std::uint32_t seed : stats::seeds(2)) {
+        const ImageSet out = resolveSeed(s, kDirections, delayed, seed, side);
+        const double oneBounce = lumaMean(bl::test::layerOf(out, "direct"));
+        const double pass = lumaMean(bl::test::layerOf(resolveSeed(s, kDirections, firstPass, seed, side), "rest"));
+        std::printf("seed %u: one-bounce channel %.7f, first bounce pass %.7f\n", seed, oneBounce, pass);
+        EXPECT_NEAR(oneBounce, pass, 1e-5 * pass) << "seed " << seed;
+        EXPECT_GT(lumaMean(bl::test::layerOf(out, "rest")), 0.0) << "seed " << seed << ": no multi-bounce light";
+    }
 }
 
 // McGuire's CornellBox-Glossy with exact Phong lobes (exponent 40 on the sphere and the short box)
