@@ -131,7 +131,6 @@ BundlePool::BundlePool(const vk::Context& ctx, const gpu::GpuScene& scene, const
     mTriangles = makeTriangleBufferSet(device, scene, kDrawStages);
     VkDescriptorSetLayout layouts[] = {mTriangles.layout.get()};
     mDrawLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BundleDrawPush), kDrawStages);
-    mComputeLayout = vk::makePipelineLayout(device, {}, sizeof(shader::BundlePoolPush), VK_SHADER_STAGE_COMPUTE_BIT);
 
     vk::GraphicsPipelineDesc desc; // no attachments, no depth test, no culling
     desc.layout = mDrawLayout.get();
@@ -156,8 +155,8 @@ BundlePool::BundlePool(const vk::Context& ctx, const gpu::GpuScene& scene, const
     desc.vertexAttributes = gpu::GpuScene::vertexAttributes();
     desc.fragmentShader = mSubgroups ? spv(kSpv_bundle_pool_count_subgroup_frag) : spv(kSpv_bundle_pool_count_frag);
     mCountPipeline = vk::makeGraphicsPipeline(device, desc);
-    mSortPipeline = vk::makeComputePipeline(device, kSpv_bundle_pool_sort_comp, mComputeLayout.get());
-    mStatsPipeline = vk::makeComputePipeline(device, kSpv_bundle_pool_stats_comp, mComputeLayout.get());
+    mSort = vk::ComputePass<shader::BundlePoolPush>(device, kSpv_bundle_pool_sort_comp);
+    mStats = vk::ComputePass<shader::BundlePoolPush>(device, kSpv_bundle_pool_stats_comp);
 }
 
 void BundlePool::allocateNodes(std::uint64_t nodes) {
@@ -288,9 +287,7 @@ void BundlePool::recordSort(VkCommandBuffer cmd, std::uint32_t slot, vk::GpuTime
     shader::BundlePoolPush push{};
     push.pool = view();
     push.slot = slot;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mSortPipeline.get());
-    vkCmdPushConstants(cmd, mComputeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(mOptions.slotPixels, shader::kBundleSortGroupSize), 1, 1);
+    mSort.dispatch(cmd, push, vk::groupCount(mOptions.slotPixels, shader::kBundleSortGroupSize));
     if (timer) timer->stop(cmd, scope);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
@@ -304,9 +301,7 @@ void BundlePool::recordStatistics(VkCommandBuffer cmd, std::uint32_t slot, VkDev
     push.pool = view();
     push.slot = slot;
     push.statsAddress = splitAddress(stats);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mStatsPipeline.get());
-    vkCmdPushConstants(cmd, mComputeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(mOptions.slotPixels, shader::kBundleSortGroupSize), 1, 1);
+    mStats.dispatch(cmd, push, vk::groupCount(mOptions.slotPixels, shader::kBundleSortGroupSize));
     if (timer) timer->stop(cmd, scope);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_HOST_BIT);

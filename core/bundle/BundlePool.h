@@ -21,6 +21,7 @@
 #include "vk/Buffer.h"
 #include "vk/Descriptors.h"
 #include "vk/GpuTimer.h"
+#include "vk/ComputePass.h"
 #include "vk/Pipeline.h"
 
 #include <shared/BundleTypes.h>
@@ -138,12 +139,11 @@ private:
     vk::Buffer mPrevious;
     TriangleBufferSet mTriangles;
     vk::PipelineLayout mDrawLayout;
-    vk::PipelineLayout mComputeLayout;
     vk::Pipeline mTrianglePipeline;
     vk::Pipeline mSplatPipeline;
     vk::Pipeline mCountPipeline;
-    vk::Pipeline mSortPipeline;
-    vk::Pipeline mStatsPipeline;
+    vk::ComputePass<shader::BundlePoolPush> mSort;
+    vk::ComputePass<shader::BundlePoolPush> mStats;
 };
 
 // Device address of a buffer created with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT.

@@ -28,18 +28,16 @@ ComputeBundleRasterizer::ComputeBundleRasterizer(const vk::Context& ctx, const g
     }
     VkDevice device = ctx.device();
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    mTriangles = makeTriangleBufferSet(device, scene, cs);
-    VkDescriptorSetLayout layouts[] = {mTriangles.layout.get()};
-    static_assert(sizeof(shader::BundleComputeClearPush) >= sizeof(shader::BundleComputePush));
-    mLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BundleComputeClearPush), cs);
+    mTriangleSet = makeTriangleBufferSet(device, scene, cs);
     std::uint32_t largestDraw = 1;
     for (const gpu::GpuDraw& d : scene.draws()) largestDraw = std::max(largestDraw, std::min(d.indexCount / 3, 65535u));
     mBig = vk::Buffer(ctx, sizeof(shader::BundleComputeBigHeader) + VkDeviceSize(largestDraw) * sizeof(std::uint32_t),
                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                           VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                       vk::MemoryUse::Device);
-    mClearPipeline = vk::makeComputePipeline(device, kSpv_bundle_compute_clear_comp, mLayout.get());
-    mTrianglePipeline = vk::makeComputePipeline(device, kSpv_bundle_compute_triangles_comp, mLayout.get());
+    mClear = vk::ComputePass<shader::BundleComputeClearPush>(device, kSpv_bundle_compute_clear_comp, {mTriangleSet.layout.get()});
+    mTriangles = vk::ComputePass<shader::BundleComputePush>(device, kSpv_bundle_compute_triangles_comp,
+                                                            {mTriangleSet.layout.get()});
 }
 
 void ComputeBundleRasterizer::record(VkCommandBuffer cmd, const BundlePool& pool, std::uint32_t slot,
@@ -63,9 +61,7 @@ void ComputeBundleRasterizer::record(VkCommandBuffer cmd, const BundlePool& pool
     clear.frameAddress = splitAddress(frames);
     clear.headAddress = splitAddress(heads);
     clear.pixels = pixels;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mClearPipeline.get());
-    vkCmdPushConstants(cmd, mLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(clear), &clear);
-    vkCmdDispatch(cmd, vk::groupCount(pixels, shader::kBundleComputeGroupSize), 1, 1);
+    mClear.dispatch(cmd, clear, vk::groupCount(pixels, shader::kBundleComputeGroupSize));
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 
     shader::BundleComputePush push{};
@@ -77,8 +73,6 @@ void ComputeBundleRasterizer::record(VkCommandBuffer cmd, const BundlePool& pool
     push.bands = (frame.height + push.rowsPerBand - 1) / push.rowsPerBand;
     push.bigAddress = splitAddress(deviceAddress(*mContext, mBig));
     const shader::BundleComputeBigHeader empty{vk::groupCount(push.bands, shader::kBundleComputeGroupSize), 0, 1, 0};
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mTrianglePipeline.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mLayout.get(), 0, 1, &mTriangles.set, 0, nullptr);
     // Draws in chunks of at most kChunk triangles: the big pass's indirect y count (the listed
     // triangles) stays within every device's maxComputeWorkGroupCount (65535).
     constexpr std::uint32_t kChunk = 65535;
@@ -94,13 +88,12 @@ void ComputeBundleRasterizer::record(VkCommandBuffer cmd, const BundlePool& pool
         vkCmdUpdateBuffer(cmd, mBig.get(), 0, sizeof(empty), &empty);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
         push.pass = shader::kBundleComputeSmallPass;
-        vkCmdPushConstants(cmd, mLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-        vkCmdDispatch(cmd, vk::groupCount(push.triangleCount, shader::kBundleComputeGroupSize), 1, 1);
+        mTriangles.dispatch(cmd, push, vk::groupCount(push.triangleCount, shader::kBundleComputeGroupSize),
+                            {&mTriangleSet.set, 1});
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT);
         push.pass = shader::kBundleComputeBigPass;
-        vkCmdPushConstants(cmd, mLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-        vkCmdDispatchIndirect(cmd, mBig.get(), 0);
+        mTriangles.dispatchIndirect(cmd, push, mBig.get(), 0, {&mTriangleSet.set, 1});
       }
     }
     if (timer) timer->stop(cmd, scope);

@@ -14,6 +14,8 @@
 
 #include "bundle/BundlePool.h"
 
+#include <bundle/ComputeBuildShared.h>
+
 namespace bl {
 
 class ComputeBundleRasterizer {
@@ -29,11 +31,10 @@ public:
 private:
     const vk::Context* mContext;
     const gpu::GpuScene* mScene;
-    TriangleBufferSet mTriangles;
+    TriangleBufferSet mTriangleSet;
     vk::Buffer mBig; // BundleComputeBigHeader + one uint per triangle of the largest draw
-    vk::PipelineLayout mLayout;
-    vk::Pipeline mClearPipeline;
-    vk::Pipeline mTrianglePipeline;
+    vk::ComputePass<shader::BundleComputeClearPush> mClear;
+    vk::ComputePass<shader::BundleComputePush> mTriangles;
 };
 
 } // namespace bl

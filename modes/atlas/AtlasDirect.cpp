@@ -100,10 +100,7 @@ void AtlasMode::recordDirect(VkCommandBuffer cmd, const shader::AtlasDirectPush&
                              std::uint32_t count) {
     Gpu& g = *mGpu;
     const std::uint32_t scope = g.timer.start(cmd, name);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.direct.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.directLayout.get(), 0, 1, &g.directSet, 0, nullptr);
-    vkCmdPushConstants(cmd, g.directLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(count, shader::kAtlasGroupSize), 1, 1);
+    g.directPass.dispatch(cmd, push, vk::groupCount(count, shader::kAtlasGroupSize), {&g.directSet, 1});
     g.timer.stop(cmd, scope);
 }
 

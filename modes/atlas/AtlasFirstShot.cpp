@@ -69,9 +69,8 @@ void AtlasMode::setUpFirstShot(const Scene& scene) {
         .image(shader::kAtlasFirstShotBindingMaps2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g.emitterPoints->maps().view(),
                VK_IMAGE_LAYOUT_GENERAL)
         .update(device, g.firstShotSet);
-    VkDescriptorSetLayout layouts[] = {g.firstShotSetLayout.get()};
-    g.firstShotLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::AtlasFirstShotPush), cs);
-    g.firstShotPipeline = vk::makeComputePipeline(device, kSpv_modes_atlas_first_shot_comp, g.firstShotLayout.get());
+    g.firstShotPass = vk::ComputePass<shader::AtlasFirstShotPush>(device, kSpv_modes_atlas_first_shot_comp,
+                                                                  {g.firstShotSetLayout.get()});
 }
 
 void AtlasMode::recordFirstShot(VkCommandBuffer cmd, double time) {
@@ -89,11 +88,7 @@ void AtlasMode::recordFirstShot(VkCommandBuffer cmd, double time) {
     push.texelCount = g.texelCount;
     push.inverseShots = 1.0f / float(mIterations + 1);
     const std::uint32_t scope = g.timer.start(cmd, "first shot");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.firstShotPipeline.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.firstShotLayout.get(), 0, 1, &g.firstShotSet, 0,
-                            nullptr);
-    vkCmdPushConstants(cmd, g.firstShotLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(g.texelCount, shader::kAtlasGroupSize), 1, 1);
+    g.firstShotPass.dispatch(cmd, push, vk::groupCount(g.texelCount, shader::kAtlasGroupSize), {&g.firstShotSet, 1});
     g.timer.stop(cmd, scope);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }

@@ -50,12 +50,11 @@ void AtlasMode::recordGather(VkCommandBuffer cmd, double weight) {
     push.weight = float(weight);
     push.clear = mTotalWeight == 0.0 ? 1u : 0u;
     const std::uint32_t scope = g.timer.start(cmd, "glossy gather");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.gather.get());
     const VkDescriptorSet set = g.camera->set();
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.gatherLayout.get(), 0, 1, &set, 0, nullptr);
-    vkCmdPushConstants(cmd, g.gatherLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(push.width, shader::kAtlasViewGroupSize),
-                  vk::groupCount(push.height, shader::kAtlasViewGroupSize), 1);
+    g.gatherPass.dispatch(cmd, push,
+                          {vk::groupCount(push.width, shader::kAtlasViewGroupSize),
+                           vk::groupCount(push.height, shader::kAtlasViewGroupSize), 1},
+                          {&set, 1});
     g.timer.stop(cmd, scope);
 }
 
@@ -71,12 +70,11 @@ void AtlasMode::recordHighlight(VkCommandBuffer cmd) {
     push.lightCount = g.shadows->lightCount();
     push.shadowResolution = g.shadows->resolution();
     const std::uint32_t scope = g.timer.start(cmd, "glossy highlight");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.highlightPipeline.get());
     const VkDescriptorSet sets[] = {g.camera->set(), g.directSet};
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.highlightLayout.get(), 0, 2, sets, 0, nullptr);
-    vkCmdPushConstants(cmd, g.highlightLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(push.width, shader::kAtlasViewGroupSize),
-                  vk::groupCount(push.height, shader::kAtlasViewGroupSize), 1);
+    g.highlightPass.dispatch(cmd, push,
+                             {vk::groupCount(push.width, shader::kAtlasViewGroupSize),
+                              vk::groupCount(push.height, shader::kAtlasViewGroupSize), 1},
+                             sets);
     g.timer.stop(cmd, scope);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }

@@ -15,6 +15,7 @@
 #include "modes/atlas/AtlasViewPass.h"
 #include "modes/atlas/DirectionOrder.h"
 #include "sampling/EnvironmentLight.h"
+#include "vk/ComputePass.h"
 #include "vk/Descriptors.h"
 
 namespace bl {
@@ -56,8 +57,14 @@ struct AtlasMode::Gpu {
     // the final gather's per-pixel sums and the view sample's point-light highlight per pixel.
     bool glossy = false, glossyTransfer = false, shuffleDirections = false;
     vk::Buffer materials, gathered, highlight;
-    vk::PipelineLayout exchangeLayout, updateLayout, shadeLayout, directLayout, gatherLayout, highlightLayout;
-    vk::Pipeline exchange, update, shade, direct, gather, highlightPipeline;
+    // The compute passes (shaders/modes/atlas/*.comp.glsl); direct, gather and highlight only where
+    // the scene needs them (empty otherwise).
+    vk::ComputePass<shader::AtlasExchangePush> exchangePass;
+    vk::ComputePass<shader::AtlasUpdatePush> updatePass;
+    vk::ComputePass<shader::AtlasShadePush> shadePass;
+    vk::ComputePass<shader::AtlasDirectPush> directPass;
+    vk::ComputePass<shader::AtlasGatherPush> gatherPass;
+    vk::ComputePass<shader::AtlasHighlightPush> highlightPass;
     vk::DescriptorSetLayout viewSetLayout, directSetLayout;
     vk::DescriptorPool descriptorPool;
     VkDescriptorSet viewSet = VK_NULL_HANDLE, directSet = VK_NULL_HANDLE;
@@ -68,8 +75,7 @@ struct AtlasMode::Gpu {
     vk::Buffer pointDirect, shotSum;
     vk::DescriptorSetLayout firstShotSetLayout;
     VkDescriptorSet firstShotSet = VK_NULL_HANDLE;
-    vk::PipelineLayout firstShotLayout;
-    vk::Pipeline firstShotPipeline;
+    vk::ComputePass<shader::AtlasFirstShotPush> firstShotPass;
     atlas::AtlasLink link;
     vk::GpuTimer timer;
     Bounds bounds;

@@ -223,10 +223,8 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
 
     VkDevice device = ctx->device();
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    g->exchangeLayout = vk::makePipelineLayout(device, {}, sizeof(shader::AtlasExchangePush), cs);
-    g->exchange = vk::makeComputePipeline(device, kSpv_modes_atlas_exchange_comp, g->exchangeLayout.get());
-    g->updateLayout = vk::makePipelineLayout(device, {}, sizeof(shader::AtlasUpdatePush), cs);
-    g->update = vk::makeComputePipeline(device, kSpv_modes_atlas_update_comp, g->updateLayout.get());
+    g->exchangePass = vk::ComputePass<shader::AtlasExchangePush>(device, kSpv_modes_atlas_exchange_comp);
+    g->updatePass = vk::ComputePass<shader::AtlasUpdatePush>(device, kSpv_modes_atlas_update_comp);
     g->viewSetLayout = vk::makeDescriptorSetLayout(device, {{shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
     // Three sets (view, point lights, first shot); the most of one type is the storage images: the
     // view, the point lights' shadow cubes and the first shot's two bindings of its cubes.
@@ -243,9 +241,8 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
             .image(shader::kAtlasDirectBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->shadows->maps().view(),
                    VK_IMAGE_LAYOUT_GENERAL)
             .update(device, g->directSet);
-        VkDescriptorSetLayout directLayouts[] = {g->directSetLayout.get()};
-        g->directLayout = vk::makePipelineLayout(device, directLayouts, sizeof(shader::AtlasDirectPush), cs);
-        g->direct = vk::makeComputePipeline(device, kSpv_modes_atlas_direct_comp, g->directLayout.get());
+        g->directPass =
+            vk::ComputePass<shader::AtlasDirectPush>(device, kSpv_modes_atlas_direct_comp, {g->directSetLayout.get()});
     }
     std::vector<shader::GpuMaterial> materials;
     for (const Material& m : scene.materials) materials.push_back(toGpuMaterial(m));
@@ -266,23 +263,19 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
         if (g->split) {
             g->gatheredIndirect = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
         }
-        VkDescriptorSetLayout cameraOnly[] = {g->camera->setLayout()};
-        g->gatherLayout = vk::makePipelineLayout(device, cameraOnly, sizeof(shader::AtlasGatherPush), cs);
-        g->gather = vk::makeComputePipeline(device, kSpv_modes_atlas_gather_comp, g->gatherLayout.get());
+        g->gatherPass =
+            vk::ComputePass<shader::AtlasGatherPush>(device, kSpv_modes_atlas_gather_comp, {g->camera->setLayout()});
         if (g->shadows) {
             g->highlight = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
-            VkDescriptorSetLayout lightLayouts[] = {g->camera->setLayout(), g->directSetLayout.get()};
-            g->highlightLayout = vk::makePipelineLayout(device, lightLayouts, sizeof(shader::AtlasHighlightPush), cs);
-            g->highlightPipeline =
-                vk::makeComputePipeline(device, kSpv_modes_atlas_highlight_comp, g->highlightLayout.get());
+            g->highlightPass = vk::ComputePass<shader::AtlasHighlightPush>(
+                device, kSpv_modes_atlas_highlight_comp, {g->camera->setLayout(), g->directSetLayout.get()});
         }
     }
     vk::DescriptorWriter()
         .image(shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->view->image().view(), VK_IMAGE_LAYOUT_GENERAL)
         .update(device, g->viewSet);
-    VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->viewSetLayout.get()};
-    g->shadeLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::AtlasShadePush), cs);
-    g->shade = vk::makeComputePipeline(device, kSpv_modes_atlas_shade_comp, g->shadeLayout.get());
+    g->shadePass = vk::ComputePass<shader::AtlasShadePush>(device, kSpv_modes_atlas_shade_comp,
+                                                           {g->camera->setLayout(), g->viewSetLayout.get()});
     mGpu = std::move(g);
     setUpFirstShot(scene);
 }
@@ -439,9 +432,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
         if (mIterations == 0 && !bounce()) { // the sender records' constant part, once
             shader::AtlasUpdatePush init = update;
             init.mode = shader::kAtlasUpdateInit;
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.update.get());
-            vkCmdPushConstants(cmd, g.updateLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(init), &init);
-            vkCmdDispatch(cmd, vk::groupCount(slots, shader::kAtlasGroupSize), 1, 1);
+            g.updatePass.dispatch(cmd, init, vk::groupCount(slots, shader::kAtlasGroupSize));
         }
         if (g.firstShot) { // after the init: the shot rewrites the records' constant part
             vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
@@ -451,9 +442,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
         std::uint32_t scope = g.timer.start(cmd, "exchange");
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.exchange.get());
-        vkCmdPushConstants(cmd, g.exchangeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(exchange), &exchange);
-        vkCmdDispatch(cmd, vk::groupCount(bundlePixels, shader::kAtlasGroupSize), 1, 1);
+        g.exchangePass.dispatch(cmd, exchange, vk::groupCount(bundlePixels, shader::kAtlasGroupSize));
         g.timer.stop(cmd, scope);
         if (g.glossyTransfer && g.shadows && g.glossyTexelCount > 0) {
             vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
@@ -465,12 +454,10 @@ void AtlasMode::iterate(const IterationInfo& info) {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT);
         scope = g.timer.start(cmd, "update");
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.update.get());
-        vkCmdPushConstants(cmd, g.updateLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(update), &update);
         if (update.mode == shader::kAtlasUpdateListed) {
-            vkCmdDispatchIndirect(cmd, g.touched.get(), shader::kAtlasTouchedDispatchOffset);
+            g.updatePass.dispatchIndirect(cmd, update, g.touched.get(), shader::kAtlasTouchedDispatchOffset);
         } else {
-            vkCmdDispatch(cmd, vk::groupCount(slots, shader::kAtlasGroupSize), 1, 1);
+            g.updatePass.dispatch(cmd, update, vk::groupCount(slots, shader::kAtlasGroupSize));
         }
         g.timer.stop(cmd, scope);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -38,7 +38,7 @@ ImageSet AtlasMode::resolve() {
     push.environmentRotation = g.scene->environmentRotation();
     push.direct = addressOf(*mContext, g.directRadiance);
     push.gathered = g.glossy ? addressOf(*mContext, g.gathered) : glm::uvec2(0u);
-    push.highlight = g.highlightPipeline ? addressOf(*mContext, g.highlight) : glm::uvec2(0u);
+    push.highlight = g.highlightPass ? addressOf(*mContext, g.highlight) : glm::uvec2(0u);
     if (g.split) {
         push.split = 1u;
         push.sumsIndirect = addressOf(*mContext, g.sumsIndirect);
@@ -52,16 +52,15 @@ ImageSet AtlasMode::resolve() {
             g.timer.begin(cmd);
             g.camera->record(cmd, sample, &g.timer);
             g.view->record(cmd, sample, &g.timer);
-            if (g.highlightPipeline) {
+            if (g.highlightPass) {
                 recordHighlight(cmd);
             }
             const std::uint32_t scope = g.timer.start(cmd, "shade");
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.shade.get());
             const VkDescriptorSet sets[] = {g.camera->set(), g.viewSet};
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.shadeLayout.get(), 0, 2, sets, 0, nullptr);
-            vkCmdPushConstants(cmd, g.shadeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-            vkCmdDispatch(cmd, vk::groupCount(width, shader::kAtlasViewGroupSize),
-                          vk::groupCount(height, shader::kAtlasViewGroupSize), 1);
+            g.shadePass.dispatch(cmd, push,
+                                 {vk::groupCount(width, shader::kAtlasViewGroupSize),
+                                  vk::groupCount(height, shader::kAtlasViewGroupSize), 1},
+                                 sets);
             g.timer.stop(cmd, scope);
             vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                               VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);

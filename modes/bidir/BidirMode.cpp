@@ -13,6 +13,7 @@
 #include "modes/bidir/VplSampler.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
+#include "vk/ComputePass.h"
 #include "vk/Descriptors.h"
 
 #include <algorithm>
@@ -81,8 +82,7 @@ struct BidirMode::Gpu {
     vk::DescriptorSetLayout setLayout;
     vk::DescriptorPool descriptorPool;
     VkDescriptorSet set = VK_NULL_HANDLE;
-    vk::PipelineLayout pipelineLayout;
-    vk::Pipeline pipeline;
+    vk::ComputePass<shader::BidirPush> evaluate;
     vk::GpuTimer timer;
     // Host wall clock of each phase of a frame (submission, wait, read-back), beside the timestamps.
     PassTime wallGbuffer{"gbuffer (wall)"}, wallBundles{"bundles (wall)"}, wallVpls{"VPLs (wall)"},
@@ -208,8 +208,6 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
                VK_IMAGE_LAYOUT_GENERAL)
         .buffer(shader::kBidirBindingInterleave, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, mInterleave->evaluateBuffer())
         .update(device, g->set);
-    VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
-    g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BidirPush), cs);
     // EvaluateSpecialization.h, in its order: what the evaluation's paths depend on for the scene's life.
     const SceneFeatures features = scene.features();
     std::vector<std::uint32_t> specialization(shader::kBidirSpecCount);
@@ -223,8 +221,8 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     specialization[shader::kBidirSpecEnvironment] = g->environment->count() > 0 ? 1u : 0u;
     specialization[shader::kBidirSpecRsm] = g->rsm ? 1u : 0u;
     specialization[shader::kBidirSpecVplTaps] = static_cast<std::uint32_t>(mSettings.getInt(kVplShadowTaps));
-    g->pipeline = vk::makeComputePipeline(device, kSpv_modes_bidir_evaluate_comp, g->pipelineLayout.get(),
-                                          specialization);
+    g->evaluate = vk::ComputePass<shader::BidirPush>(device, kSpv_modes_bidir_evaluate_comp,
+                                                     {g->camera->setLayout(), g->setLayout.get()}, specialization);
     mInterleave->preparePipeline(g->camera->setLayout());
     mGpu = std::move(g);
 }
@@ -374,13 +372,12 @@ void BidirMode::iterate(const IterationInfo& info) {
         }
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
         const std::uint32_t scope = g.timer.start(cmd, "evaluate");
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());
-        const VkDescriptorSet sets[] = {g.camera->set(), g.set};
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 2, sets, 0, nullptr);
-        vkCmdPushConstants(cmd, g.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
         if (mInterleave->active()) mInterleave->recordClear(cmd);
-        vkCmdDispatch(cmd, vk::groupCount(mInterleave->dispatchWidth(), shader::kBidirGroupSize),
-                      vk::groupCount(mInterleave->dispatchHeight(), shader::kBidirGroupSize), 1);
+        const VkDescriptorSet sets[] = {g.camera->set(), g.set};
+        g.evaluate.dispatch(cmd, push,
+                            {vk::groupCount(mInterleave->dispatchWidth(), shader::kBidirGroupSize),
+                             vk::groupCount(mInterleave->dispatchHeight(), shader::kBidirGroupSize), 1},
+                            sets);
         g.timer.stop(cmd, scope);
         if (mInterleave->active()) mInterleave->recordResolve(cmd, g.camera->set(), sample.camera, &g.timer);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -62,10 +62,8 @@ bool Interleaving::matches(std::uint32_t width, std::uint32_t height, const Inte
 
 void Interleaving::preparePipeline(VkDescriptorSetLayout cameraSetLayout) {
     VkDevice device = mContext->device();
-    VkDescriptorSetLayout layouts[] = {cameraSetLayout, mSetLayout.get()};
-    mPipelineLayout =
-        vk::makePipelineLayout(device, layouts, sizeof(shader::InterleavePush), VK_SHADER_STAGE_COMPUTE_BIT);
-    mPipeline = vk::makeComputePipeline(device, kSpv_modes_bidir_interleave_comp, mPipelineLayout.get());
+    mFilter = vk::ComputePass<shader::InterleavePush>(device, kSpv_modes_bidir_interleave_comp,
+                                                      {cameraSetLayout, mSetLayout.get()});
 }
 
 std::uint32_t Interleaving::dispatchWidth() const {
@@ -131,12 +129,10 @@ void Interleaving::recordResolve(VkCommandBuffer cmd, VkDescriptorSet cameraSet,
     push.twoSigma2 = mOptions.twoSigma2;
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     const std::uint32_t scope = timer ? timer->start(cmd, "interleave filter/reconstruct") : 0;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mPipeline.get());
     const VkDescriptorSet sets[] = {cameraSet, mSet};
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mPipelineLayout.get(), 0, 2, sets, 0, nullptr);
-    vkCmdPushConstants(cmd, mPipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(mWidth, shader::kInterleaveGroupSize),
-                  vk::groupCount(mHeight, shader::kInterleaveGroupSize), 1);
+    mFilter.dispatch(cmd, push,
+                     {vk::groupCount(mWidth, shader::kInterleaveGroupSize), vk::groupCount(mHeight, shader::kInterleaveGroupSize), 1},
+                     sets);
     if (timer) timer->stop(cmd, scope);
 }
 

@@ -20,9 +20,10 @@
 #include "vk/Descriptors.h"
 #include "vk/GpuImage.h"
 #include "vk/GpuTimer.h"
-#include "vk/Pipeline.h"
+#include "vk/ComputePass.h"
 
 #include <cstdint>
+#include <modes/bidir/Interleave.h>
 
 namespace bl {
 
@@ -83,8 +84,7 @@ private:
     vk::DescriptorSetLayout mSetLayout;
     vk::DescriptorPool mPool;
     VkDescriptorSet mSet = VK_NULL_HANDLE;
-    vk::PipelineLayout mPipelineLayout;
-    vk::Pipeline mPipeline;
+    vk::ComputePass<shader::InterleavePush> mFilter;
 };
 
 } // namespace bl

@@ -54,9 +54,7 @@ ReflectiveShadowMap::ReflectiveShadowMap(const vk::Context& ctx, const gpu::GpuS
                                                       {shader::kBidirRsmBindingTexels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
     mPool = vk::DescriptorPool(device, 1, 4);
     mSet = mPool.allocate(mSetLayout.get());
-    VkDescriptorSetLayout layouts[] = {mSetLayout.get()};
-    mPipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BidirRsmPush), cs);
-    mPipeline = vk::makeComputePipeline(device, kSpv_modes_bidir_rsm_sample_comp, mPipelineLayout.get());
+    mSample = vk::ComputePass<shader::BidirRsmPush>(device, kSpv_modes_bidir_rsm_sample_comp, {mSetLayout.get()});
 }
 
 void ReflectiveShadowMap::buildCdf(const std::vector<shader::GpuLight>& lights) {
@@ -168,11 +166,7 @@ std::vector<shader::BidirVpl> ReflectiveShadowMap::sample(std::uint64_t first, s
                 vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
                 push.light = l;
                 push.face = face;
-                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mPipeline.get());
-                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mPipelineLayout.get(), 0, 1, &mSet, 0,
-                                        nullptr);
-                vkCmdPushConstants(cmd, mPipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-                vkCmdDispatch(cmd, vk::groupCount(count, shader::kBidirRsmGroupSize), 1, 1);
+                mSample.dispatch(cmd, push, vk::groupCount(count, shader::kBidirRsmGroupSize), {&mSet, 1});
                 vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                   VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT);
             }

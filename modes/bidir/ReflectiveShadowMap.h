@@ -21,10 +21,11 @@
 #include "vk/Buffer.h"
 #include "vk/Descriptors.h"
 #include "vk/GpuTimer.h"
-#include "vk/Pipeline.h"
+#include "vk/ComputePass.h"
 
 #include <memory>
 #include <modes/bidir/BidirShared.h>
+#include <modes/bidir/Rsm.h>
 #include <optional>
 #include <vector>
 
@@ -66,8 +67,7 @@ private:
     vk::DescriptorSetLayout mSetLayout;
     vk::DescriptorPool mPool;
     VkDescriptorSet mSet = VK_NULL_HANDLE;
-    vk::PipelineLayout mPipelineLayout;
-    vk::Pipeline mPipeline;
+    vk::ComputePass<shader::BidirRsmPush> mSample;
     std::uint64_t mMismatches = 0;
 };
 

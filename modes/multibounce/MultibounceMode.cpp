@@ -13,6 +13,7 @@
 #include "modes/multibounce/SurfacePoints.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
+#include "vk/ComputePass.h"
 #include "vk/Descriptors.h"
 
 #include <modes/multibounce/MultibounceShared.h>
@@ -93,8 +94,7 @@ struct MultibounceMode::Gpu {
     vk::DescriptorSetLayout setLayout;
     vk::DescriptorPool descriptorPool;
     VkDescriptorSet set = VK_NULL_HANDLE;
-    vk::PipelineLayout pipelineLayout;
-    vk::Pipeline pipeline;
+    vk::ComputePass<shader::MultibouncePush> paths;
     vk::GpuTimer timer;
     Bounds bounds;
     std::uint64_t nodesLast = 0; // nodes the last iteration's K bundles held
@@ -248,9 +248,8 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
         .image(shader::kMultibounceBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                g->emitterPoints->maps().view(), VK_IMAGE_LAYOUT_GENERAL)
         .update(device, g->set);
-    VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
-    g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::MultibouncePush), cs);
-    g->pipeline = vk::makeComputePipeline(device, kSpv_modes_multibounce_paths_comp, g->pipelineLayout.get());
+    g->paths = vk::ComputePass<shader::MultibouncePush>(device, kSpv_modes_multibounce_paths_comp,
+                                                        {g->camera->setLayout(), g->setLayout.get()});
     mGpu = std::move(g);
 }
 
@@ -331,12 +330,11 @@ void MultibounceMode::iterate(const IterationInfo& info) {
         g.emitterPoints->record(cmd, info.time, &g.timer);
         g.camera->record(cmd, sample, &g.timer);
         const std::uint32_t scope = g.timer.start(cmd, "paths");
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());
         const VkDescriptorSet sets[] = {g.camera->set(), g.set};
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 2, sets, 0, nullptr);
-        vkCmdPushConstants(cmd, g.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-        vkCmdDispatch(cmd, vk::groupCount(width, shader::kMultibounceGroupSize),
-                      vk::groupCount(height, shader::kMultibounceGroupSize), 1);
+        g.paths.dispatch(cmd, push,
+                         {vk::groupCount(width, shader::kMultibounceGroupSize),
+                          vk::groupCount(height, shader::kMultibounceGroupSize), 1},
+                         sets);
         g.timer.stop(cmd, scope);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);

@@ -96,9 +96,7 @@ SurfacePoints::SurfacePoints(const vk::Context& ctx, const gpu::GpuScene& scene,
         .buffer(shader::kMultibouncePointsBindingSplats, sb, mSplats.get())
         .buffer(shader::kMultibouncePointsBindingPoints, sb, mPoints.get())
         .update(device, mSet);
-    VkDescriptorSetLayout layouts[] = {mSetLayout.get()};
-    mLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::MultibouncePointsPush), cs);
-    mPipeline = vk::makeComputePipeline(device, kSpv_modes_multibounce_points_comp, mLayout.get());
+    mSample = vk::ComputePass<shader::MultibouncePointsPush>(device, kSpv_modes_multibounce_points_comp, {mSetLayout.get()});
 }
 
 void SurfacePoints::record(VkCommandBuffer cmd, std::uint32_t seed, std::uint32_t iteration, double time,
@@ -121,10 +119,7 @@ void SurfacePoints::record(VkCommandBuffer cmd, std::uint32_t seed, std::uint32_
     push.textured = mScene->features().textured ? 1u : 0u;
     const std::uint32_t groups = vk::groupCount(push.count, shader::kMultibouncePointsGroupSize);
     const std::uint32_t rowGroups = std::min(groups, kGroupsPerRow);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mPipeline.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mLayout.get(), 0, 1, &mSet, 0, nullptr);
-    vkCmdPushConstants(cmd, mLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, rowGroups, vk::groupCount(groups, rowGroups), 1);
+    mSample.dispatch(cmd, push, {rowGroups, vk::groupCount(groups, rowGroups), 1}, {&mSet, 1});
     if (timer) timer->stop(cmd, scope);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |

@@ -20,8 +20,9 @@
 #include "vk/Buffer.h"
 #include "vk/Descriptors.h"
 #include "vk/GpuTimer.h"
-#include "vk/Pipeline.h"
+#include "vk/ComputePass.h"
 
+#include <modes/multibounce/MultibounceShared.h>
 #include <vector>
 
 namespace bl {
@@ -61,8 +62,7 @@ private:
     vk::DescriptorSetLayout mSetLayout;
     vk::DescriptorPool mDescriptorPool;
     VkDescriptorSet mSet = VK_NULL_HANDLE;
-    vk::PipelineLayout mLayout;
-    vk::Pipeline mPipeline;
+    vk::ComputePass<shader::MultibouncePointsPush> mSample;
 };
 
 } // namespace bl

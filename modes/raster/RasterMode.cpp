@@ -5,6 +5,7 @@
 #include "sampling/PixelSamples.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
+#include "vk/ComputePass.h"
 #include "vk/Descriptors.h"
 
 #include <cmath>
@@ -39,8 +40,7 @@ struct RasterMode::Gpu {
     vk::DescriptorSetLayout setLayout;
     vk::DescriptorPool pool;
     VkDescriptorSet set = VK_NULL_HANDLE;
-    vk::PipelineLayout pipelineLayout;
-    vk::Pipeline pipeline;
+    vk::ComputePass<shader::RasterPush> shade;
     vk::GpuTimer timer;
 };
 
@@ -128,9 +128,8 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
         .image(shader::kRasterBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                g->emitterPoints->maps().view(), VK_IMAGE_LAYOUT_GENERAL)
         .update(device, g->set);
-    VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
-    g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::RasterPush), cs);
-    g->pipeline = vk::makeComputePipeline(device, kSpv_modes_raster_shade_comp, g->pipelineLayout.get());
+    g->shade = vk::ComputePass<shader::RasterPush>(device, kSpv_modes_raster_shade_comp,
+                                                   {g->camera->setLayout(), g->setLayout.get()});
     mGpu = std::move(g);
 }
 
@@ -162,12 +161,10 @@ void RasterMode::iterate(const IterationInfo& info) {
         push.samplePosition = sample.samplePosition;
         push.width = width;
         push.height = height;
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());
         const VkDescriptorSet sets[] = {g.camera->set(), g.set};
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 2, sets, 0, nullptr);
-        vkCmdPushConstants(cmd, g.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-        vkCmdDispatch(cmd, vk::groupCount(width, shader::kRasterGroupSize),
-                      vk::groupCount(height, shader::kRasterGroupSize), 1);
+        g.shade.dispatch(cmd, push,
+                         {vk::groupCount(width, shader::kRasterGroupSize), vk::groupCount(height, shader::kRasterGroupSize), 1},
+                         sets);
         g.timer.stop(cmd, scope);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);

@@ -7,6 +7,7 @@
 #include "modes/skylight/IrradianceTable.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
+#include "vk/ComputePass.h"
 
 #include <cstring>
 #include <modes/skylight/SkylightShared.h>
@@ -77,8 +78,7 @@ struct SkylightMode::Gpu {
     vk::DescriptorSetLayout setLayout;
     vk::DescriptorPool pool;
     VkDescriptorSet set = VK_NULL_HANDLE;
-    vk::PipelineLayout pipelineLayout;
-    vk::Pipeline pipeline;
+    vk::ComputePass<shader::SkylightPush> visibility;
     vk::GpuTimer timer;
     std::vector<glm::vec3> visiblePoints; // for fit = visible: this iteration's
     std::optional<gpu::CameraSample> gbufferSample; // what the G-buffer holds now (gbuffer_reuse)
@@ -161,9 +161,8 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
         .image(shader::kSkylightBindingDepthMap, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                depthMapVisibility ? g->depthMap->map().view() : g->placeholder.view(), VK_IMAGE_LAYOUT_GENERAL)
         .update(device, g->set);
-    VkDescriptorSetLayout layouts[] = {g->camera->setLayout(), g->setLayout.get()};
-    g->pipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::SkylightPush), cs);
-    g->pipeline = vk::makeComputePipeline(device, kSpv_modes_skylight_visibility_comp, g->pipelineLayout.get());
+    g->visibility = vk::ComputePass<shader::SkylightPush>(device, kSpv_modes_skylight_visibility_comp,
+                                                          {g->camera->setLayout(), g->setLayout.get()});
 
     if (g->placeholder.get()) {
         ctx->submitAndWait([&](VkCommandBuffer cmd) { vk::transitionImage(cmd, g->placeholder.get(), vk::ImageTransition{}); });
@@ -230,12 +229,10 @@ void SkylightMode::iterate(const IterationInfo& info) {
     }
     auto dispatchVisibility = [&](VkCommandBuffer cmd) {
         std::uint32_t scope = g.timer.start(cmd, "visibility");
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipeline.get());
         const VkDescriptorSet sets[] = {g.camera->set(), g.set};
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout.get(), 0, 2, sets, 0, nullptr);
-        vkCmdPushConstants(cmd, g.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-        vkCmdDispatch(cmd, vk::groupCount(width, shader::kSkylightGroupSize),
-                      vk::groupCount(height, shader::kSkylightGroupSize), 1);
+        g.visibility.dispatch(
+            cmd, push, {vk::groupCount(width, shader::kSkylightGroupSize), vk::groupCount(height, shader::kSkylightGroupSize), 1},
+            sets);
         g.timer.stop(cmd, scope);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
