@@ -5,12 +5,14 @@
 // the current estimate.
 #pragma once
 
+#include "base/Error.h"
 #include "base/PassTime.h"
 #include "config/Settings.h"
 #include "image/Image.h"
 #include "modes/LostWork.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -98,6 +100,20 @@ inline TradeSettings tradeSettingsOf(const Settings& settings, const std::string
     t.fitKey = fitKey;
     t.fitVisible = !fitKey.empty() && settings.getString(fitKey) == "visible";
     return t;
+}
+
+// What a mode's setScene() built, for a call that needs it: a clear error naming the mode and the
+// call when there is none yet (iterate() or resolve() before setScene()).
+template <typename State>
+State& sceneState(State* state, std::string_view mode, std::string_view call) {
+    if (!state) {
+        throw Error(std::string(mode) + ": " + std::string(call) + "() before setScene()");
+    }
+    return *state;
+}
+template <typename State>
+State& sceneState(const std::unique_ptr<State>& state, std::string_view mode, std::string_view call) {
+    return sceneState(state.get(), mode, call);
 }
 
 class Mode {

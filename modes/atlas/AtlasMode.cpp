@@ -324,10 +324,7 @@ shader::AtlasDirection AtlasMode::buildBundle(const IterationInfo& info) {
 }
 
 void AtlasMode::iterate(const IterationInfo& info) {
-    if (!mGpu) {
-        throw Error("atlas: iterate() before setScene()");
-    }
-    Gpu& g = *mGpu;
+    Gpu& g = sceneState(mGpu, name(), "iterate");
     // The atlas holds one static solution: geometry and lights must stay where the first direction
     // saw them (a moving camera is fine: the view is rendered at the last direction's time).
     if (!mSolutionTime) {
@@ -478,10 +475,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
 }
 
 AtlasMode::TexelRadiance AtlasMode::readTexels() const {
-    if (!mGpu) {
-        throw Error("atlas: readTexels() before setScene()");
-    }
-    const Gpu& g = *mGpu;
+    const Gpu& g = sceneState(mGpu, name(), "readTexels");
     const std::size_t slots = shader::kAtlasSides * g.texelCount;
     std::vector<glm::vec4> sums(2 * slots), settled(slots), direct(slots);
     g.sums.download(*mContext, sums.data(), sums.size() * sizeof(glm::vec4));

@@ -15,10 +15,7 @@ namespace bl {
 using atlasmode::addressOf;
 
 ImageSet AtlasMode::resolve() {
-    if (!mGpu) {
-        throw Error("atlas: resolve() before setScene()");
-    }
-    Gpu& g = *mGpu;
+    Gpu& g = sceneState(mGpu, name(), "resolve");
     const auto samples = static_cast<std::uint32_t>(mSettings.getInt(kViewSamples));
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
     g.camera->accumulator().clear(*mContext);

@@ -282,10 +282,7 @@ void BidirMode::buildBundles(const IterationInfo& info) {
 }
 
 void BidirMode::iterate(const IterationInfo& info) {
-    if (!mGpu) {
-        throw Error("bidir: iterate() before setScene()");
-    }
-    Gpu& g = *mGpu;
+    Gpu& g = sceneState(mGpu, name(), "iterate");
     const auto pairs = static_cast<std::uint32_t>(mSettings.getInt(kPairs));
     const std::uint32_t strategy = strategyOf(mSettings.getString(kStrategy));
     const std::uint32_t lightCount = g.shadows->lightCount();
@@ -390,10 +387,7 @@ void BidirMode::iterate(const IterationInfo& info) {
 }
 
 ImageSet BidirMode::resolve() {
-    if (!mGpu) {
-        throw Error("bidir: resolve() before setScene()");
-    }
-    Gpu& g = *mGpu;
+    Gpu& g = sceneState(mGpu, name(), "resolve");
     ImageSet out;
     out.iterations = mIterations; // one sample per pixel per frame (the mean over its K pairs)
     gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations);

@@ -285,10 +285,7 @@ void MultibounceMode::buildBundles(const IterationInfo& info) {
 }
 
 void MultibounceMode::iterate(const IterationInfo& info) {
-    if (!mGpu) {
-        throw Error("multibounce: iterate() before setScene()");
-    }
-    Gpu& g = *mGpu;
+    Gpu& g = sceneState(mGpu, name(), "iterate");
     if (!g.directions) {
         // The seed decorrelates runs; directions are reproducible from (settings, seed).
         g.directions = std::make_unique<DirectionSampler>(sequenceOf(mSettings.getString(kDirections)),
@@ -344,10 +341,7 @@ void MultibounceMode::iterate(const IterationInfo& info) {
 }
 
 ImageSet MultibounceMode::resolve() {
-    if (!mGpu) {
-        throw Error("multibounce: resolve() before setScene()");
-    }
-    Gpu& g = *mGpu;
+    Gpu& g = sceneState(mGpu, name(), "resolve");
     ImageSet out;
     out.iterations = mIterations; // each added paths_per_pixel samples per pixel
     gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations * pathsPerPixel());

@@ -134,10 +134,7 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
 }
 
 void RasterMode::iterate(const IterationInfo& info) {
-    if (!mGpu) {
-        throw Error("raster: iterate() before setScene()");
-    }
-    Gpu& g = *mGpu;
+    Gpu& g = sceneState(mGpu, name(), "iterate");
     const std::uint32_t width = g.camera->width();
     const std::uint32_t height = g.camera->height();
     const gpu::CameraSample sample = g.camera->sample(mIterations, mSettings.getBool(kJitter), info.time, info.seed);
@@ -174,10 +171,7 @@ void RasterMode::iterate(const IterationInfo& info) {
 }
 
 ImageSet RasterMode::resolve() {
-    if (!mGpu) {
-        throw Error("raster: resolve() before setScene()");
-    }
-    Gpu& g = *mGpu;
+    Gpu& g = sceneState(mGpu, name(), "resolve");
     const int width = static_cast<int>(g.camera->width());
     const int height = static_cast<int>(g.camera->height());
     ImageSet out;

@@ -61,9 +61,7 @@ void ReferenceMode::setScene(const Scene& scene, vk::Context*) {
 }
 
 void ReferenceMode::iterate(const IterationInfo& info) {
-    if (!mScene) {
-        throw Error("reference: iterate() before setScene()");
-    }
+    sceneState(mScene, name(), "iterate");
     using Clock = std::chrono::steady_clock;
     if (!mRenderer || !mTime || *mTime != info.time) {
         // A new scene time is a new image: the accumulation restarts.
@@ -80,9 +78,7 @@ void ReferenceMode::iterate(const IterationInfo& info) {
 }
 
 ImageSet ReferenceMode::resolve() {
-    if (!mScene) {
-        throw Error("reference: resolve() before setScene()");
-    }
+    sceneState(mScene, name(), "resolve");
     if (!mRenderer) {
         mRenderer = std::make_unique<ReferenceRenderer>(*mScene, 0.0, rendererSettings());
         mTime = 0.0;

@@ -174,10 +174,7 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
 }
 
 void SkylightMode::iterate(const IterationInfo& info) {
-    if (!mGpu) {
-        throw Error("skylight: iterate() before setScene()");
-    }
-    Gpu& g = *mGpu;
+    Gpu& g = sceneState(mGpu, name(), "iterate");
     if (!g.directions) {
         g.directions = std::make_unique<DirectionSampler>(
             sequenceOf(mSettings.getString(kDirections)), static_cast<std::uint32_t>(info.seed),
@@ -275,10 +272,7 @@ void SkylightMode::iterate(const IterationInfo& info) {
 }
 
 ImageSet SkylightMode::resolve() {
-    if (!mGpu) {
-        throw Error("skylight: resolve() before setScene()");
-    }
-    Gpu& g = *mGpu;
+    Gpu& g = sceneState(mGpu, name(), "resolve");
     ImageSet out;
     out.iterations = mIterations;
     // One sample per pixel and direction: emitted + direct, and their variance.
