@@ -38,12 +38,6 @@ namespace {
 // its 256^2 default (a texel spans ~4e-3 of the scene at unit distance).
 constexpr float kVplLiftFraction = 1e-3f;
 
-std::uint32_t suppressionOf(const std::string& name) {
-    if (name == "clamp") return shader::kBidirSuppressionClamp;
-    if (name == "roughness") return shader::kBidirSuppressionRoughness;
-    return shader::kBidirSuppressionNone;
-}
-
 bool finiteVec(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // Every field the evaluation reads of a VPL is finite (a light ray's hit at float's limits can
@@ -52,17 +46,11 @@ bool finiteVpl(const shader::BidirVpl& v) {
     return finiteVec(v.position) && finiteVec(v.normal) && finiteVec(v.albedo) && finiteVec(v.intensity) &&
            finiteVec(v.toLight) && finiteVec(v.cubeCentre) && std::isfinite(v.pdfLight) && std::isfinite(v.areaPdf);
 }
-
-std::uint32_t strategyOf(const std::string& name) {
-    if (name == "vpl") return shader::kBidirStrategyVpl;
-    if (name == "bundle") return shader::kBidirStrategyBundle;
-    return shader::kBidirStrategyMis;
-}
 } // namespace
 
 std::unique_ptr<Mode> BidirMode::create(const Settings& settings) { return std::make_unique<BidirMode>(settings); }
 
-BidirMode::BidirMode(const Settings& settings) : mSettings(settings) {}
+BidirMode::BidirMode(const Settings& settings) : mSettings(settings), mOptions(bidirOptions(settings)) {}
 
 struct BidirMode::Gpu {
     std::unique_ptr<gpu::GpuScene> scene;
@@ -109,13 +97,14 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     mIterations = 0;
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
-    const auto pairs = static_cast<std::uint32_t>(mSettings.getInt(kPairs));
-    const auto shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
-    const auto vplSide = static_cast<VkDeviceSize>(mSettings.getInt(kVplShadowResolution));
-    const std::uint32_t strategy = strategyOf(mSettings.getString(kStrategy));
-    const bool twoBounce = mSettings.getInt(kBounces) >= 2;
-    const auto points = static_cast<std::uint32_t>(mSettings.getInt(kEmitterPoints));
-    const auto pointSide = static_cast<std::uint32_t>(mSettings.getInt(kEmitterShadowResolution));
+    const BidirOptions& o = mOptions;
+    const std::uint32_t pairs = o.pairs;
+    const auto shadowSide = static_cast<VkDeviceSize>(o.shadowResolution);
+    const auto vplSide = static_cast<VkDeviceSize>(o.vplShadowResolution);
+    const std::uint32_t strategy = o.strategy;
+    const bool twoBounce = o.twoBounce();
+    const std::uint32_t points = o.emitterPoints;
+    const std::uint32_t pointSide = o.emitterShadowResolution;
     const bool areaLit = scene.features().emissiveMeshes && points > 0;
     ctx->requireDeviceMemory(VkDeviceSize(width) * height * gpu::CameraPass::bytesPerPixel(shader::kBidirAccumLayers) +
                                  shadowSide * shadowSide * 4 * (6 * scene.lights.size() + 1) +
@@ -131,9 +120,8 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->vplShadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(vplSide), vplCubes);
     g->vpls = std::make_unique<VplSampler>(scene);
     g->emitterPoints = std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene, areaLit ? points : 0u, pointSide);
-    if (mSettings.getString(kVplSource) == "rsm" && g->shadows->lightCount() > 0) {
-        g->rsm = std::make_unique<ReflectiveShadowMap>(*ctx, *g->scene,
-                                                       static_cast<std::uint32_t>(mSettings.getInt(kRsmResolution)));
+    if (o.rsmVpls && g->shadows->lightCount() > 0) {
+        g->rsm = std::make_unique<ReflectiveShadowMap>(*ctx, *g->scene, o.rsmResolution);
     } else {
         g->noRsm = vk::Buffer(*ctx, 4 * shader::kBidirRsmHeaderWords, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               vk::MemoryUse::Upload);
@@ -143,8 +131,7 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
                               vk::MemoryUse::Upload);
     g->bounds = scene.bounds();
     setUpInterleaving(scene, width, height);
-    g->environment = std::make_unique<EnvironmentBundles>(
-        *ctx, scene, static_cast<std::uint32_t>(mSettings.getInt(kEnvironmentBundles)), 0.1f);
+    g->environment = std::make_unique<EnvironmentBundles>(*ctx, scene, o.environmentBundles, 0.1f);
     g->textures = std::make_unique<gpu::PackedTextures>(*ctx, scene);
     // Point/spot lights: bundles for the bundle strategy and the two-bounce term; area emitters (no
     // VPL from them yet): for the bundle strategy's one-bounce term.
@@ -154,16 +141,15 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
 
     if (pairBundles || g->environment->count() > 0) {
         if (!ctx->geometryShader()) {
-            throw Error("bidir: strategy " + mSettings.getString(kStrategy) + " with bounces = " +
-                        std::to_string(mSettings.getInt(kBounces)) +
+            throw Error("bidir: strategy " + o.strategyName + " with bounces = " + std::to_string(o.bounces) +
                         " needs bundle hit payloads (gl_PrimitiveID: geometry shaders); use strategy=vpl bounces=1");
         }
-        const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+        const std::uint32_t resolution = o.bundleResolution;
         BundlePoolOptions options;
         options.slots = (pairBundles ? pairs : 0u) + g->environment->count();
         options.slotPixels = resolution * resolution;
         options.payload = BundlePayload::Hit;
-        options.memoryCapBytes = static_cast<std::uint64_t>(mSettings.getInt(kMemoryCap)) << 20;
+        options.memoryCapBytes = o.memoryCapBytes;
         try {
             g->pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
         } catch (const Error& e) {
@@ -212,15 +198,14 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     const SceneFeatures features = scene.features();
     std::vector<std::uint32_t> specialization(shader::kBidirSpecCount);
     specialization[shader::kBidirSpecStrategy] = strategy;
-    specialization[shader::kBidirSpecBounces] = static_cast<std::uint32_t>(mSettings.getInt(kBounces));
-    specialization[shader::kBidirSpecSuppression] = suppressesGlossy(mSettings, features)
-                                                        ? suppressionOf(mSettings.getString(kSuppression))
-                                                        : shader::kBidirSuppressionNone;
+    specialization[shader::kBidirSpecBounces] = o.bounces;
+    specialization[shader::kBidirSpecSuppression] =
+        o.suppressesGlossy(features) ? o.suppression : shader::kBidirSuppressionNone;
     specialization[shader::kBidirSpecGlossy] = features.glossy ? 1u : 0u;
     specialization[shader::kBidirSpecTextured] = features.textured ? 1u : 0u;
     specialization[shader::kBidirSpecEnvironment] = g->environment->count() > 0 ? 1u : 0u;
     specialization[shader::kBidirSpecRsm] = g->rsm ? 1u : 0u;
-    specialization[shader::kBidirSpecVplTaps] = static_cast<std::uint32_t>(mSettings.getInt(kVplShadowTaps));
+    specialization[shader::kBidirSpecVplTaps] = o.vplShadowTaps;
     g->evaluate = vk::ComputePass<shader::BidirPush>(device, kSpv_modes_bidir_evaluate_comp,
                                                      {g->camera->setLayout(), g->setLayout.get()}, specialization);
     mInterleave->preparePipeline(g->camera->setLayout());
@@ -231,12 +216,12 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
 // frames of an animation) for the same scene, image size and options.
 void BidirMode::setUpInterleaving(const Scene& scene, std::uint32_t width, std::uint32_t height) {
     InterleaveOptions o;
-    o.n = static_cast<std::uint32_t>(mSettings.getInt(kInterleave));
-    o.filter = mSettings.getString(kInterleaveFilter) == "on";
-    o.temporal = mSettings.getString(kTemporal) == "on";
-    o.reproject = scene.camera.animated() || mSettings.getString(kReprojection) == "always";
-    o.twoSigma2 = static_cast<float>(mSettings.getDouble(kTemporalDepthVariance));
-    const auto pairs = static_cast<std::uint32_t>(mSettings.getInt(kPairs));
+    o.n = mOptions.interleave;
+    o.filter = mOptions.interleaveFilter;
+    o.temporal = mOptions.temporal;
+    o.reproject = scene.camera.animated() || mOptions.reprojectAlways;
+    o.twoSigma2 = static_cast<float>(mOptions.temporalDepthVariance);
+    const std::uint32_t pairs = mOptions.pairs;
     if (o.n * o.n > pairs) {
         throw Error("bidir: interleave = " + std::to_string(o.n) + " needs pairs_per_frame >= " +
                     std::to_string(o.n * o.n) + " (one pair per sub-image at least), got " + std::to_string(pairs));
@@ -254,7 +239,7 @@ void BidirMode::buildBundles(const IterationInfo& info) {
     Gpu& g = *mGpu;
     const std::uint32_t slots = g.pool->slots();
     const std::uint32_t pairSlots = slots - g.environment->count(); // then the environment's
-    const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+    const std::uint32_t resolution = mOptions.bundleResolution;
     std::vector<shader::BundleFrame> frames(pairSlots);
     for (std::uint32_t k = 0; k < pairSlots; ++k) {
         const BundleDirection dir =
@@ -283,15 +268,14 @@ void BidirMode::buildBundles(const IterationInfo& info) {
 
 void BidirMode::iterate(const IterationInfo& info) {
     Gpu& g = sceneState(mGpu, name(), "iterate");
-    const auto pairs = static_cast<std::uint32_t>(mSettings.getInt(kPairs));
-    const std::uint32_t strategy = strategyOf(mSettings.getString(kStrategy));
+    const BidirOptions& o = mOptions;
+    const std::uint32_t pairs = o.pairs;
+    const std::uint32_t strategy = o.strategy;
     const std::uint32_t lightCount = g.shadows->lightCount();
     if (!g.directions) {
         // The seed decorrelates runs; directions are reproducible from (settings, seed).
-        g.directions = std::make_unique<DirectionSampler>(mSettings.getString(kDirections) == "halton"
-                                                              ? DirectionSequence::Halton
-                                                              : DirectionSequence::Random,
-                                                          static_cast<std::uint32_t>(info.seed));
+        g.directions = std::make_unique<DirectionSampler>(
+            o.haltonDirections ? DirectionSequence::Halton : DirectionSequence::Random, static_cast<std::uint32_t>(info.seed));
     }
     // The G-buffer first: fit = visible fits this frame's bundles to the points it sees.
     const gpu::CameraSample sample = mInterleave->cameraSample(g.camera->sample(mIterations, true, info.time, info.seed),
@@ -306,10 +290,10 @@ void BidirMode::iterate(const IterationInfo& info) {
     }
     if (g.pool) {
         const WallSpan wall(g.wallBundles);
-        if (mSettings.getString(kFit) == "visible") g.visiblePoints = g.camera->gbuffer().visiblePoints(*mContext);
+        if (o.fitVisible) g.visiblePoints = g.camera->gbuffer().visiblePoints(*mContext);
         buildBundles(info);
     }
-    const bool twoBounce = mSettings.getInt(kBounces) >= 2;
+    const bool twoBounce = o.twoBounce();
     const bool useVpls = lightCount > 0 && (strategy != shader::kBidirStrategyBundle || twoBounce);
     std::vector<shader::BidirVpl> vpls(pairs);
     if (useVpls) {
@@ -346,14 +330,13 @@ void BidirMode::iterate(const IterationInfo& info) {
     push.strategy = strategy;
     // Uniform directions: every direction of a hemisphere has the same density (the axis is arbitrary).
     push.hemispherePdf = g.directions->hemispherePdf(glm::vec3(0.0f, 0.0f, 1.0f));
-    push.suppression = suppressesGlossy(mSettings, g.scene->features()) ? suppressionOf(mSettings.getString(kSuppression))
-                                                                        : shader::kBidirSuppressionNone;
-    push.suppressionNeighbours = static_cast<float>(mSettings.getDouble(kSuppressionNeighbours));
+    push.suppression = o.suppressesGlossy(g.scene->features()) ? o.suppression : shader::kBidirSuppressionNone;
+    push.suppressionNeighbours = static_cast<float>(o.suppressionNeighbours);
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
     push.environmentRotation = g.scene->environmentRotation();
     push.samplePosition = sample.samplePosition;
-    push.bounces = static_cast<std::uint32_t>(mSettings.getInt(kBounces));
-    const float minDistance = static_cast<float>(mSettings.getDouble(kTwoBounceClamp)) * g.bounds.radius();
+    push.bounces = o.bounces;
+    const float minDistance = static_cast<float>(o.twoBounceClamp) * g.bounds.radius();
     push.twoBounceMinDistance2 = minDistance * minDistance;
     std::optional<WallSpan> wall(std::in_place, g.wallEvaluate);
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
@@ -417,7 +400,7 @@ ImageSet BidirMode::resolve() {
         // bundle_resolution x the mean ratio of the sphere frame's pixel to the one used: the side of a
         // sphere-fitted bundle with the same pixels (fit = scene: bundle_resolution).
         out.counters.emplace_back("bundle_effective_resolution",
-                                  g.bundlesBuilt ? double(mSettings.getInt(kBundleResolution)) * g.pixelGainSum /
+                                  g.bundlesBuilt ? double(mOptions.bundleResolution) * g.pixelGainSum /
                                                        double(g.bundlesBuilt)
                                                  : 0.0);
     }
@@ -437,8 +420,7 @@ TradeSettings BidirMode::trades() const {
     TradeSettings t = tradeSettingsOf(mSettings, kShadowResolution, kBundleResolution, kFit);
     // strategy = vpl with one bounce pairs its VPLs with no bundle (setScene: pairBundles); only an
     // environment's bundles are left to judge.
-    t.bundlesOnlyForEnvironment = strategyOf(mSettings.getString(kStrategy)) == shader::kBidirStrategyVpl &&
-                                  mSettings.getInt(kBounces) < 2;
+    t.bundlesOnlyForEnvironment = mOptions.strategy == shader::kBidirStrategyVpl && !mOptions.twoBounce();
     return t;
 }
 

@@ -92,6 +92,7 @@
 #include "bundle/BundlePool.h"
 #include "bundle/DirectionSampler.h"
 #include "modes/Mode.h"
+#include "modes/bidir/BidirOptions.h"
 #include "modes/bidir/Interleaving.h"
 
 #include <memory>
@@ -138,9 +139,6 @@ public:
     const Settings& settings() const override { return mSettings; }
     PassTimes timings() const override;
     std::vector<PlannedPass> plan(const Scene& scene) const override;
-    // Whether glossy suppression runs for these settings on a scene with these features
-    // (BidirPlan.cpp): only where it can change something.
-    static bool suppressesGlossy(const Settings& settings, const SceneFeatures& f);
     TradeSettings trades() const override;
 
 private:
@@ -149,6 +147,7 @@ private:
     void setUpInterleaving(const Scene& scene, std::uint32_t width, std::uint32_t height);
 
     Settings mSettings;
+    BidirOptions mOptions; // mSettings, typed, read once
     const Scene* mScene = nullptr;
     vk::Context* mContext = nullptr;
     std::unique_ptr<Gpu> mGpu;

@@ -67,18 +67,13 @@ std::vector<ParamSpec> BidirMode::parameters() {
                                       "direct and one-bounce light from area emitters (0: area lights left out)", 0);
 }
 
-// Suppression runs only where it can change something: a glossy material and indirect light.
-// Skipped, the shader takes blEvalBrdf's path it would take anyway for Lambertian materials.
-bool BidirMode::suppressesGlossy(const Settings& settings, const SceneFeatures& f) {
-    return settings.getString(kSuppression) != "none" && f.glossy && f.shadowCastingLights() > 0;
-}
-
 std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
     const SceneFeatures f = scene.features();
-    const std::string strategy = mSettings.getString(kStrategy);
-    const auto pairs = std::to_string(mSettings.getInt(kPairs));
+    const BidirOptions& o = mOptions;
+    const std::string& strategy = o.strategyName;
+    const auto pairs = std::to_string(o.pairs);
     const bool lights = f.shadowCastingLights() > 0;
-    const bool twoBounce = mSettings.getInt(kBounces) >= 2;
+    const bool twoBounce = o.twoBounce();
     std::vector<PlannedPass> p;
     p.push_back({"gbuffer", true, std::to_string(f.triangles) + " triangles, jittered every frame"});
     p.push_back({"light shadow cubes", lights,
@@ -89,21 +84,20 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
     p.push_back({"VPL rays + VPL shadow cubes", vpl,
                  !lights ? "no point or spot light to start light paths"
                  : vpl   ? pairs + " VPLs per frame (" +
-                             (mSettings.getString(kVplSource) == "rsm"
-                                  ? "GPU, " + std::to_string(mSettings.getInt(kRsmResolution)) + "^2 reflective shadow cube per light"
+                             (o.rsmVpls ? "GPU, " + std::to_string(o.rsmResolution) + "^2 reflective shadow cube per light"
                                   : std::string("CPU rays, Embree")) +
                              "), a " +
-                             std::to_string(mSettings.getInt(kVplShadowResolution)) + "^2 cube each" +
+                             std::to_string(o.vplShadowResolution) + "^2 cube each" +
                              (strategy == "bundle" ? " (for the two-bounce term only)" : "")
                          : "strategy = bundle with bounces = 1 uses no VPL"});
-    const bool area = f.emissiveMeshes && mSettings.getInt(kEmitterPoints) > 0;
+    const bool area = f.emissiveMeshes && o.emitterPoints > 0;
     const bool bundles = (lights && (strategy != "vpl" || twoBounce)) || (area && strategy != "vpl");
     p.push_back({"bundle builds", bundles,
                  !lights && !area ? "no point, spot or area light: nothing for camera paths to reach"
                  : !lights && strategy == "vpl" ? "strategy = vpl: area emitters' one-bounce light needs the bundles"
-                 : bundles ? pairs + " bundles of " + std::to_string(mSettings.getInt(kBundleResolution)) +
+                 : bundles ? pairs + " bundles of " + std::to_string(o.bundleResolution) +
                                  "^2 with hit payload per frame, around the " +
-                                 (mSettings.getString(kFit) == "visible" ? "visible points" : "scene's sphere") +
+                                 (o.fitVisible ? "visible points" : "scene's sphere") +
                                  (strategy == "vpl" ? " (for the two-bounce term only)" : "")
                            : "strategy = vpl with bounces = 1 uses no bundle"});
     p.push_back({"evaluate", true, lights ? "direct + one-bounce (" + strategy + ")" +
@@ -111,37 +105,37 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
                                    : area ? (strategy == "vpl" ? "no point/spot light: area emitters' direct light"
                                                                : "no point/spot light: area emitters' direct and "
                                                                  "one-bounce light")
-                                          : f.environment && mSettings.getInt(kEnvironmentBundles) > 0
+                                          : f.environment && o.environmentBundles > 0
                                               ? "no point/spot light: emitters, environment background and direct "
                                                 "environment light by bundles"
                                               : "no point/spot light: emitters and environment background only"});
-    const std::string suppression = mSettings.getString(kSuppression);
-    const bool suppress = suppressesGlossy(mSettings, f);
+    const std::string& suppression = o.suppressionName;
+    const bool suppress = o.suppressesGlossy(f);
     p.push_back({"glossy suppression (" + suppression + ")", suppress,
                  suppress               ? "sample densities (Eq. 13-17) at the glossy vertices of indirect paths"
                  : suppression == "none" ? "suppression = none"
                  : !lights              ? "no indirect light without point/spot lights"
                                         : "no glossy material: every BRDF is Lambertian, nothing to suppress"});
-    const auto n = mSettings.getInt(kInterleave);
-    const bool filter = mSettings.getString(kInterleaveFilter) == "on";
+    const std::uint32_t n = o.interleave;
+    const bool filter = o.interleaveFilter;
     p.push_back({"split + gather (interleave " + std::to_string(n) + ")", n > 1,
                  n > 1 ? std::to_string(n * n) + " sub-images (pixels " + std::to_string(n) + " apart in x and y), " +
-                             std::to_string(mSettings.getInt(kPairs) / (n * n)) + "+ pairs each"
+                             std::to_string(o.pairs / (n * n)) + "+ pairs each"
                        : "interleave = 1"});
     p.push_back({"geometry-aware filter", n > 1 && filter,
                  n == 1 ? "interleave = 1: nothing to recombine"
                  : filter ? std::to_string(n) + "x" + std::to_string(n) + " neighbourhood, normal and depth weights"
                           : "interleave_filter = off"});
-    const bool temporal = mSettings.getString(kTemporal) == "on";
+    const bool temporal = o.temporal;
     p.push_back({"temporal caches", temporal, temporal ? "4 sub-pixel caches, one rewritten per frame" : "temporal = off"});
-    const bool reproject = temporal && (scene.camera.animated() || mSettings.getString(kReprojection) == "always");
+    const bool reproject = temporal && (scene.camera.animated() || o.reprojectAlways);
     p.push_back({"reverse reprojection", reproject,
                  !temporal   ? "temporal = off"
                  : reproject ? (scene.camera.animated() ? "the camera is animated: each cache warped into its camera"
                                                          : "reprojection = always")
                              : "static camera: every cache's warp is the identity (moving meshes still fail the "
                                "log-depth test), the image is the same"});
-    const auto envBundles = mSettings.getInt(kEnvironmentBundles);
+    const std::uint32_t envBundles = o.environmentBundles;
     p.push_back({"environment bundles", f.environment && envBundles > 0,
                  !f.environment   ? "no environment"
                  : envBundles > 0 ? std::to_string(envBundles) + " bundles per frame by Eq. 2 importance: direct "
@@ -152,8 +146,8 @@ std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
         p.push_back({"area light", false, "emitter_points = 0 leaves the area emitters out", true});
     } else if (area) {
         p.push_back({"emitter points", true,
-                     std::to_string(mSettings.getInt(kEmitterPoints)) + " point(s) on the area emitters per frame, by "
-                         "power, x 6 faces of " + std::to_string(mSettings.getInt(kEmitterShadowResolution)) +
+                     std::to_string(o.emitterPoints) + " point(s) on the area emitters per frame, by "
+                         "power, x 6 faces of " + std::to_string(o.emitterShadowResolution) +
                          "^2: their direct light, and their one-bounce light at the bundles' hits (bundle strategy "
                          "alone: no VPL leaves an area emitter yet)"});
         if (strategy == "vpl") {
