@@ -30,9 +30,6 @@ constexpr double kMiB = 1024.0 * 1024.0;
 // what an iteration needs, so starting low keeps large K and R from asking for memory never used.
 constexpr std::uint64_t kInitialNodesPerPixel = 2;
 
-DirectionSequence sequenceOf(const std::string& name) {
-    return name == "random" ? DirectionSequence::Random : DirectionSequence::Halton;
-}
 } // namespace
 
 std::vector<ParamSpec> MultibounceMode::parameters() {
@@ -77,7 +74,7 @@ std::unique_ptr<Mode> MultibounceMode::create(const Settings& settings) {
     return std::make_unique<MultibounceMode>(settings);
 }
 
-MultibounceMode::MultibounceMode(const Settings& settings) : mSettings(settings) {}
+MultibounceMode::MultibounceMode(const Settings& settings) : mSettings(settings), mOptions(multibounceOptions(settings)) {}
 
 struct MultibounceMode::Gpu {
     std::unique_ptr<gpu::GpuScene> scene;
@@ -105,11 +102,12 @@ MultibounceMode::~MultibounceMode() = default;
 
 std::vector<PlannedPass> MultibounceMode::plan(const Scene& scene) const {
     const SceneFeatures f = scene.features();
-    const auto k = std::to_string(mSettings.getInt(kBundleCount));
-    const auto r = std::to_string(mSettings.getInt(kBundleResolution));
+    const MultibounceOptions& o = mOptions;
+    const auto k = std::to_string(o.bundleCount);
+    const auto r = std::to_string(o.bundleResolution);
     std::vector<PlannedPass> p;
-    if (imperfect()) {
-        const auto n = std::to_string(mSettings.getInt(kPoints));
+    if (mOptions.imperfect) {
+        const auto n = std::to_string(o.points);
         p.push_back({"surface points", true,
                      k + " x " + n + " points uniform by area over " + std::to_string(f.triangles) +
                          " triangles (a different set per direction), every iteration" +
@@ -117,7 +115,7 @@ std::vector<PlannedPass> MultibounceMode::plan(const Scene& scene) const {
                                      : "; no textures: UVs not interpolated")});
         p.push_back({"bundle build", true, k + " bundles of " + r + "^2 pixels from " + n +
                                                " point splats each (splat_scale " +
-                                               formatValue(mSettings.getDouble(kSplatScale)) +
+                                               formatValue(o.splatScale) +
                                                "), with hit payload, every iteration"});
     } else {
         p.push_back({"bundle build", true, k + " bundles of " + r + "^2 pixels over " + std::to_string(f.triangles) +
@@ -132,12 +130,12 @@ std::vector<PlannedPass> MultibounceMode::plan(const Scene& scene) const {
                          (f.animated ? "every iteration (animated scene)" : "once (static scene)")});
     }
     p.push_back({"gbuffer", true, "the camera's first vertex, jittered every iteration"});
-    const std::string sampling = mSettings.getString(kEmitterSampling);
+    const std::string& sampling = o.emitterSampling;
     if (f.emissiveMeshes && sampling != "bundles") {
         p.push_back({"emitter points", true,
-                     std::to_string(mSettings.getInt(kEmitterPoints)) +
+                     std::to_string(o.emitterPoints) +
                          " point(s) on the emitters per iteration, by power, x 6 faces of " +
-                         std::to_string(mSettings.getInt(kEmitterShadowResolution)) + "^2, at every path vertex"});
+                         std::to_string(o.emitterShadowResolution) + "^2, at every path vertex"});
     }
     std::string paths = "bounces through the bundles";
     paths += !f.emissiveMeshes        ? "; no emitters to hit"
@@ -150,8 +148,8 @@ std::vector<PlannedPass> MultibounceMode::plan(const Scene& scene) const {
         std::snprintf(mib, sizeof(mib), "%.1f", double(gpu::PackedTextures::words(scene)) * 4.0 / kMiB);
         paths += "; textured albedo at every vertex from " + std::to_string(scene.textures.size()) +
                  " textures packed in one buffer (" + mib + " MiB), bilinear at " +
-                 (!imperfect() ? std::string("the bundle payload's UV")
-                               : mSettings.getString(kSplatUv) == "centre" ? std::string("each splat's centre UV")
+                 (!mOptions.imperfect ? std::string("the bundle payload's UV")
+                               : o.splatUvCentre ? std::string("each splat's centre UV")
                                                                           : std::string("the UV over each splat (from its corners)"));
     } else {
         paths += "; no textures: no texture lookups (packed texture buffer holds the decode table only)";
@@ -169,11 +167,11 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     mIterations = 0;
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
-    const auto shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
+    const auto shadowSide = static_cast<VkDeviceSize>(mOptions.shadowResolution);
     ctx->requireDeviceMemory(VkDeviceSize(width) * height * gpu::CameraPass::bytesPerPixel(shader::kMultibounceAccumLayers) +
                                  shadowSide * shadowSide * 4 * (6 * scene.lights.size() + 1) +
-                                 (scene.features().emissiveMeshes && emitterPointCount() > 0
-                                      ? gpu::EmitterPointPass::bytesFor(emitterPointCount(), emitterShadowSide())
+                                 (scene.features().emissiveMeshes && mOptions.emitterPointCount() > 0
+                                      ? gpu::EmitterPointPass::bytesFor(mOptions.emitterPointCount(), mOptions.emitterShadowResolution)
                                       : 0),
                              "multibounce at " + std::to_string(width) + "x" + std::to_string(height));
     auto g = std::make_unique<Gpu>();
@@ -181,18 +179,18 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kMultibounceAccumLayers);
     g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
     g->emitterPoints =
-        std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene, emitterPointCount(), emitterShadowSide());
+        std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene, mOptions.emitterPointCount(), mOptions.emitterShadowResolution);
     g->bounds = scene.bounds();
 
-    const auto slots = static_cast<std::uint32_t>(mSettings.getInt(kBundleCount));
-    const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+    const std::uint32_t slots = mOptions.bundleCount;
+    const std::uint32_t resolution = mOptions.bundleResolution;
     BundlePoolOptions options;
     options.slots = slots;
     options.slotPixels = resolution * resolution;
     options.payload = BundlePayload::Hit;
     options.sortable = true;
     options.initialNodes = kInitialNodesPerPixel * slots * options.slotPixels;
-    options.memoryCapBytes = static_cast<std::uint64_t>(mSettings.getInt(kMemoryCap)) << 20;
+    options.memoryCapBytes = mOptions.memoryCapBytes;
     try {
         g->pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
     } catch (const Error& e) {
@@ -203,9 +201,8 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     constexpr std::uint32_t kOtherScopes = 8;
     g->timer = vk::GpuTimer(*ctx, 2 * slots + kOtherScopes);
 
-    if (imperfect()) {
-        g->points = std::make_unique<SurfacePoints>(*ctx, *g->scene, slots, static_cast<std::uint32_t>(mSettings.getInt(kPoints)),
-                                                    mSettings.getDouble(kSplatScale));
+    if (mOptions.imperfect) {
+        g->points = std::make_unique<SurfacePoints>(*ctx, *g->scene, slots, mOptions.points, mOptions.splatScale);
     } else {
         g->noPoints = vk::Buffer(*ctx, sizeof(shader::MultibouncePoint), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                  vk::MemoryUse::Device);
@@ -258,7 +255,7 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
 void MultibounceMode::buildBundles(const IterationInfo& info) {
     Gpu& g = *mGpu;
     const std::uint32_t slots = g.pool->slots();
-    const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+    const std::uint32_t resolution = mOptions.bundleResolution;
     std::vector<shader::BundleFrame> frames(slots);
     for (std::uint32_t k = 0; k < slots; ++k) {
         const BundleDirection dir = g.directions->sample(mIterations * slots + k);
@@ -288,8 +285,7 @@ void MultibounceMode::iterate(const IterationInfo& info) {
     Gpu& g = sceneState(mGpu, name(), "iterate");
     if (!g.directions) {
         // The seed decorrelates runs; directions are reproducible from (settings, seed).
-        g.directions = std::make_unique<DirectionSampler>(sequenceOf(mSettings.getString(kDirections)),
-                                                          static_cast<std::uint32_t>(info.seed));
+        g.directions = std::make_unique<DirectionSampler>(mOptions.directions, static_cast<std::uint32_t>(info.seed));
     }
     buildBundles(info);
 
@@ -308,16 +304,16 @@ void MultibounceMode::iterate(const IterationInfo& info) {
     push.emitterCount = g.emitterCount;
     push.flags = (g.scene->environmentPresent() ? shader::kMultibounceEnvironment : 0u) |
                  (g.scene->features().textured ? shader::kMultibounceTextured : 0u) |
-                 (mSettings.getString(kSplatUv) == "centre" ? shader::kMultibounceSplatCentreUv : 0u) |
+                 (mOptions.splatUvCentre ? shader::kMultibounceSplatCentreUv : 0u) |
                  (distinctBundles() ? shader::kMultibounceDistinctBundles : 0u) |
-                 (mSettings.getString(kEmitterSampling) == "points" ? shader::kMultibounceEmitterPointsOnly : 0u);
+                 (mOptions.emitterPointsOnly() ? shader::kMultibounceEmitterPointsOnly : 0u);
     push.environmentRotation = g.scene->environmentRotation();
-    push.maxSegments = static_cast<std::uint32_t>(mSettings.getInt(kMaxSegments));
-    push.rrSegments = static_cast<std::uint32_t>(mSettings.getInt(kRrSegments));
+    push.maxSegments = mOptions.maxSegments;
+    push.rrSegments = mOptions.rrSegments;
     // Uniform directions: every direction of a hemisphere has the same density (the axis is arbitrary).
     push.hemispherePdf = g.directions->hemispherePdf(glm::vec3(0.0f, 0.0f, 1.0f));
     push.samplePosition = sample.samplePosition;
-    push.pathsPerPixel = pathsPerPixel();
+    push.pathsPerPixel = mOptions.pathsPerPixel;
     push.pointsPerDirection = g.points ? g.points->perDirection() : 0u;
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
@@ -344,7 +340,7 @@ ImageSet MultibounceMode::resolve() {
     Gpu& g = sceneState(mGpu, name(), "resolve");
     ImageSet out;
     out.iterations = mIterations; // each added paths_per_pixel samples per pixel
-    gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations * pathsPerPixel());
+    gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations * mOptions.pathsPerPixel);
     out.layers = std::move(estimate.layers);
     addSampleLosses(out, estimate.nonFiniteSamples, estimate.droppedSamples, estimate.expectedSamples);
     out.counters.emplace_back("bundle_nodes_last", double(g.nodesLast));
@@ -364,20 +360,20 @@ TradeSettings MultibounceMode::trades() const {
     // light at their last vertex, K + 2 segments in all, emitters too where emitter points light
     // that vertex; without them (emitter_sampling = bundles) emitters, and the sky always, are met
     // only at the end of a bundle segment, K + 1 at most (shaders/modes/multibounce/paths.comp.glsl).
-    const auto k = static_cast<std::uint32_t>(mSettings.getInt(kBundleCount));
-    const auto longest = static_cast<std::uint32_t>(mSettings.getInt(kMaxSegments));
+    const std::uint32_t k = mOptions.bundleCount;
+    const std::uint32_t longest = mOptions.maxSegments;
     if (distinctBundles() && k <= shader::kMultibounceRecentBundles && k + 2u < longest) {
         t.pathKey = kBundleCount;
         t.pathValue = k;
         t.pathSegments = k + 2u;
-        t.pathSegmentsToEmitters = emitterPointCount() > 0 ? k + 2u : k + 1u;
+        t.pathSegmentsToEmitters = mOptions.emitterPointCount() > 0 ? k + 2u : k + 1u;
         t.pathSegmentsToSky = k + 1u;
         t.pathUncut = longest;
         t.pathUncutFrom = shader::kMultibounceRecentBundles + 1u;
         // K = 9..15 cut nothing but leave a path K - 8 bundles to draw from after 8 segments (K = 9:
         // one, a fixed cycle; rare after Russian roulette): 16 is the value to suggest.
         t.pathSuggested = 2u * shader::kMultibounceRecentBundles;
-        if (sequenceOf(mSettings.getString(kDirections)) != DirectionSequence::Random) {
+        if (mOptions.directions != DirectionSequence::Random) {
             t.pathNote = "with directions=halton a path that skips the bundles it used also skips their strata: "
                          "a further -2 to -4 % on the point-lit Cornell box (K = 2..8); directions=random has none";
         }
@@ -392,8 +388,7 @@ TradeSettings MultibounceMode::trades() const {
 // against 16384 spp: with replacement +2.4 / +6.8 / +11 % / x77 at K = 8 / 4 / 3 / 2; without
 // -2.8 / -6.2 / -8.8 / -12 %, all of it the paths cut at K + 2 segments that SettingTrades states).
 bool MultibounceMode::distinctBundles() const {
-    return sequenceOf(mSettings.getString(kDirections)) == DirectionSequence::Random ||
-           static_cast<std::uint32_t>(mSettings.getInt(kBundleCount)) <= shader::kMultibounceRecentBundles;
+    return mOptions.directions == DirectionSequence::Random || mOptions.bundleCount <= shader::kMultibounceRecentBundles;
 }
 
 } // namespace bl

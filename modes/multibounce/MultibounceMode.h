@@ -68,6 +68,7 @@
 #pragma once
 
 #include "modes/Mode.h"
+#include "modes/multibounce/MultibounceOptions.h"
 
 #include <memory>
 #include <optional>
@@ -111,19 +112,9 @@ private:
     bool distinctBundles() const; // a path draws its bundles without replacement
     struct Gpu;
     void buildBundles(const IterationInfo& info);
-    std::uint32_t pathsPerPixel() const { return static_cast<std::uint32_t>(mSettings.getInt(kPathsPerPixel)); }
-    bool imperfect() const { return mSettings.getString(kBundles) == "imperfect"; }
-    // Emitter points per iteration: 0 with emitter_sampling = bundles.
-    std::uint32_t emitterPointCount() const {
-        return mSettings.getString(kEmitterSampling) == "bundles"
-                   ? 0u
-                   : static_cast<std::uint32_t>(mSettings.getInt(kEmitterPoints));
-    }
-    std::uint32_t emitterShadowSide() const {
-        return static_cast<std::uint32_t>(mSettings.getInt(kEmitterShadowResolution));
-    }
 
     Settings mSettings;
+    MultibounceOptions mOptions; // mSettings, typed, read once
     const Scene* mScene = nullptr;
     vk::Context* mContext = nullptr;
     std::unique_ptr<Gpu> mGpu;
