@@ -38,7 +38,7 @@ void AtlasMode::lightDirect(double time) {
         return;
     }
     // The texels' sample points: the point/spot lights' and the first shot's.
-    const auto grid = static_cast<int>(mSettings.getInt(kLightSamples));
+    const auto grid = static_cast<int>(mOptions.lightSamples);
     const atlasmode::TexelSamples samples = atlasmode::buildTexelSamples(*mScene, g.atlas, g.link, grid, time);
     g.samples = vk::makeBuffer(*mContext, std::span<const shader::AtlasSample>(samples.samples), kStorage);
     g.firstSample = vk::makeBuffer(*mContext, std::span<const std::uint32_t>(samples.first), kStorage);
@@ -48,8 +48,8 @@ void AtlasMode::lightDirect(double time) {
     g.scene->setLightTime(*mContext, time); // keyframed lights where they are at this time
     shader::AtlasDirectPush push = directPush();
     push.direct = addressOf(*mContext, g.directRadiance);
-    push.sender = bounce() ? addressOf(*mContext, g.sender) : glm::uvec2(0u); // interleaved: sender records
-    push.directIntoSender = bounce() ? 0u : 1u;
+    push.sender = mOptions.bounce ? addressOf(*mContext, g.sender) : glm::uvec2(0u); // interleaved: sender records
+    push.directIntoSender = mOptions.bounce ? 0u : 1u;
     if (g.glossyTransfer) {
         // The glossy texels (their lobes take the lights' light toward each next direction) and
         // the first cache record of each: one per sample and light.

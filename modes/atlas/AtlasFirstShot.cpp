@@ -20,17 +20,18 @@ AtlasMode::FirstShotChoice AtlasMode::firstShotChoice(const Scene& scene) const 
         c.why = "no area emitters";
         return c;
     }
-    if (mSettings.getString(kTransfer) == "bounce") {
+    const AtlasModeOptions& o = mOptions;
+    if (o.bounce) {
         c.conflict = "transfer = bounce";
-    } else if (mSettings.getInt(kDelayIndirect) != 0) {
-        c.conflict = "delay_indirect = " + std::to_string(mSettings.getInt(kDelayIndirect));
-    } else if (f.glossy && mSettings.getString(kGlossy) != "off") {
-        c.conflict = "glossy = " + mSettings.getString(kGlossy) + " on glossy materials";
+    } else if (o.delayIndirect != 0) {
+        c.conflict = "delay_indirect = " + std::to_string(o.delayIndirect);
+    } else if (f.glossy && o.glossy != "off") {
+        c.conflict = "glossy = " + o.glossy + " on glossy materials";
     }
-    if (mSettings.getString(kFirstShot) == "off") {
+    if (o.firstShot == "off") {
         c.why = "first_shot = off: the exchange carries the emitters' light";
     } else if (!c.conflict.empty()) {
-        c.why = mSettings.getString(kFirstShot) == "on"
+        c.why = o.firstShot == "on"
                     ? "first_shot = on with " + c.conflict + ": refused at set-up (first_shot = auto leaves the shot out)"
                     : "first_shot = auto, " + c.conflict + ": the exchange carries the emitters' light";
     } else {
@@ -45,8 +46,8 @@ void AtlasMode::setUpFirstShot(const Scene& scene) {
     if (!g.firstShot) {
         return;
     }
-    const auto points = static_cast<std::uint32_t>(mSettings.getInt(kEmitterPoints));
-    const auto side = static_cast<std::uint32_t>(mSettings.getInt(kEmitterShadowResolution));
+    const std::uint32_t points = mOptions.emitterPoints;
+    const std::uint32_t side = mOptions.emitterShadowResolution;
     mContext->requireDeviceMemory(gpu::EmitterPointPass::bytesFor(points, side) +
                                       VkDeviceSize(g.texelCount) * shader::kAtlasSides * 2 * sizeof(glm::vec4),
                                   "atlas first shot");

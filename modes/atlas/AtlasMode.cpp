@@ -55,13 +55,6 @@ constexpr std::uint32_t kGridKeyY = 0xb5297a4du;
 constexpr VkDeviceSize kBytesPerTexel = 32 + 64 + 64 + 32 + 32 + 4 + 8 + 96;
 constexpr VkDeviceSize kSplitBytesPerTexel = 32 + 64;
 
-DirectionSequence sequenceOf(const std::string& name) {
-    if (name == "random") return DirectionSequence::Random;
-    if (name == "stratified") return DirectionSequence::Stratified;
-    if (name == "importance") return DirectionSequence::Importance;
-    return DirectionSequence::Halton;
-}
-
 // Whether any mesh or light is keyframed (a camera path alone leaves the atlas's solution valid).
 bool movesOverTime(const Scene& scene) {
     for (const Mesh& m : scene.meshes) {
@@ -76,7 +69,7 @@ bool movesOverTime(const Scene& scene) {
 
 std::unique_ptr<Mode> AtlasMode::create(const Settings& settings) { return std::make_unique<AtlasMode>(settings); }
 
-AtlasMode::AtlasMode(const Settings& settings) : mSettings(settings) {}
+AtlasMode::AtlasMode(const Settings& settings) : mSettings(settings), mOptions(atlasModeOptions(settings)) {}
 
 AtlasMode::~AtlasMode() = default;
 
@@ -90,17 +83,17 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     mTotalWeight = 0.0;
     mPass = 1;
     mTime = 0.0;
-    if (mSettings.getString(kTransfer) != "bounce" && mSettings.getInt(kMaxSegments) != 0) {
+    if (!mOptions.bounce && mOptions.maxSegments != 0) {
         throw Error("atlas: max_segments needs transfer=bounce (interleaved transfer mixes path lengths in every "
                     "direction's sender)");
     }
-    if (mSettings.getString(kTransfer) == "bounce" && mSettings.getInt(kDelayIndirect) != 0) {
-        throw Error("atlas: delay_indirect = " + std::to_string(mSettings.getInt(kDelayIndirect)) +
+    if (mOptions.bounce && mOptions.delayIndirect != 0) {
+        throw Error("atlas: delay_indirect = " + std::to_string(mOptions.delayIndirect) +
                     " needs transfer=interleaved (bounce-by-bounce transfer sends direct light alone in its first "
                     "pass already)");
     }
     if (const FirstShotChoice shot = firstShotChoice(scene);
-        mSettings.getString(kFirstShot) == "on" && !shot.conflict.empty()) {
+        mOptions.firstShot == "on" && !shot.conflict.empty()) {
         throw Error("atlas: first_shot = on needs transfer=interleaved, delay_indirect=0 and no glossy transport "
                     "(glossy=off or no glossy materials), here " + shot.conflict +
                     ": the shot's light does not yet enter a fixed pass sender, the one-bounce channel or the glossy "
@@ -114,7 +107,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     auto g = std::make_unique<Gpu>();
 
     atlas::AtlasOptions atlasOptions;
-    atlasOptions.size = static_cast<int>(mSettings.getInt(kAtlasResolution));
+    atlasOptions.size = static_cast<int>(mOptions.atlasResolution);
     g->atlas = atlas::buildAtlas(scene, atlasOptions);
     // The generator leaves out triangles that found no texel and no room for a chart of their own
     // (sub-texel triangles of large scenes); the mode needs every triangle in the atlas.
@@ -144,13 +137,13 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
         log::warn("atlas: " + std::to_string(g->tables.degenerateTriangles) +
                   " triangles have no atlas area; their hits exchange nothing");
     }
-    const auto shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
-    const auto lightSamples = static_cast<VkDeviceSize>(mSettings.getInt(kLightSamples));
+    const auto shadowSide = static_cast<VkDeviceSize>(mOptions.shadowResolution);
+    const auto lightSamples = static_cast<VkDeviceSize>(mOptions.lightSamples);
     const VkDeviceSize lightBytes = scene.lights.empty()
                                         ? 0
                                         : shadowSide * shadowSide * 8 * 6 * scene.lights.size() +
                                               VkDeviceSize(g->texelCount) * (lightSamples * lightSamples * 32 + 4);
-    g->split = mSettings.getInt(kDelayIndirect) > 0;
+    g->split = mOptions.delayIndirect > 0;
     ctx->requireDeviceMemory(VkDeviceSize(g->texelCount) * (kBytesPerTexel + (g->split ? kSplitBytesPerTexel : 0)) +
                                  lightBytes +
                                  VkDeviceSize(width) * height *
@@ -163,7 +156,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->view = std::make_unique<atlasmode::AtlasViewPass>(*ctx, *g->scene, width, height);
     g->bounds = scene.bounds();
     g->environment = EnvironmentLight(scene.environment, false);
-    if (sequenceOf(mSettings.getString(kDirections)) == DirectionSequence::Importance) {
+    if (mOptions.directions == DirectionSequence::Importance) {
         if (!scene.environment.present) {
             throw Error("atlas: directions=importance needs an environment in the scene");
         }
@@ -172,14 +165,14 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
 
     // One grid of R + 1 pixels a side: each direction's grid is shifted by a random sub-pixel
     // offset (below), and the extra pixel keeps the bounding sphere covered.
-    const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution)) + 1;
+    const std::uint32_t resolution = mOptions.bundleResolution + 1;
     BundlePoolOptions options;
     options.slots = 1;
     options.slotPixels = resolution * resolution;
     options.payload = BundlePayload::Hit;
     options.sortable = true;
     options.initialNodes = kInitialNodesPerPixel * options.slotPixels;
-    options.memoryCapBytes = static_cast<std::uint64_t>(mSettings.getInt(kMemoryCap)) << 20;
+    options.memoryCapBytes = mOptions.memoryCapBytes;
     g->pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
     // Build, sort, exchange, update, and per view sample G-buffer, view raster, shade.
     constexpr std::uint32_t kScopes = 24;
@@ -191,12 +184,12 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->charts = vk::makeBuffer(*ctx, std::span<const std::int32_t>(g->tables.charts), kStorage);
     // Bounce: the sender starts as the emission (front sides); interleaved transfer keeps sender
     // records instead (written before the first direction). Sums and received start at zero.
-    std::vector<glm::vec4> sender(bounce() ? shader::kAtlasSides * texels : 0, glm::vec4(0.0f));
+    std::vector<glm::vec4> sender(mOptions.bounce ? shader::kAtlasSides * texels : 0, glm::vec4(0.0f));
     for (std::size_t t = 0; t < sender.size() / shader::kAtlasSides; ++t) {
         sender[shader::kAtlasSides * t + shader::kAtlasFront] = glm::vec4(g->tables.texels[t].emission, 0.0f);
     }
     g->sender = vk::makeBuffer(*ctx, std::span<const glm::vec4>(sender), kStorage);
-    g->senders = vk::Buffer(*ctx, (bounce() ? 1 : shader::kAtlasSides * texels) * sizeof(shader::AtlasSenderRecord),
+    g->senders = vk::Buffer(*ctx, (mOptions.bounce ? 1 : shader::kAtlasSides * texels) * sizeof(shader::AtlasSenderRecord),
                             kStorage, vk::MemoryUse::Device);
     g->received = vk::makeBuffer(*ctx,
                                  std::span<const glm::vec4>(std::vector<glm::vec4>(
@@ -248,8 +241,8 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     for (const Material& m : scene.materials) materials.push_back(toGpuMaterial(m));
     if (materials.empty()) materials.emplace_back();
     g->materials = vk::makeBuffer(*ctx, std::span<const shader::GpuMaterial>(materials), kStorage);
-    g->glossy = scene.features().glossy && !bounce() && mSettings.getString(kGlossy) != "off";
-    g->glossyTransfer = g->glossy && mSettings.getString(kGlossy) == "transfer";
+    g->glossy = scene.features().glossy && !mOptions.bounce && mOptions.glossy != "off";
+    g->glossyTransfer = g->glossy && mOptions.glossy == "transfer";
     // The shuffled direction order only where a mesh carries a glossy lobe: with none hit, the
     // transfer adds nothing and the directions stay those of the diffuse mode.
     const auto glossyMesh = [&](const Mesh& m) {
@@ -284,7 +277,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
 // and refuses what the limits cannot hold.
 shader::AtlasDirection AtlasMode::buildBundle(const IterationInfo& info) {
     Gpu& g = *mGpu;
-    const auto resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+    const std::uint32_t resolution = mOptions.bundleResolution;
     const BundleDirection dir = g.directions->sample(directionIndex(mIterations));
     // A frame of R + 1 pixels of the R-pixel frame's size (radius scaled by (R + 1) / R), shifted
     // by a random sub-pixel offset in [-1/2, 1/2) pixel each way: it still covers the bounding
@@ -301,7 +294,7 @@ shader::AtlasDirection AtlasMode::buildBundle(const IterationInfo& info) {
     shader::AtlasDirection params{};
     // Radiance arriving from +omega at the last hit of a list, from -omega at the first.
     // Bounce-by-bounce: the environment is a source, sent in pass 1 only (later passes send reflected light).
-    const bool environment = g.environment.present() && (!bounce() || mPass == 1);
+    const bool environment = g.environment.present() && (!mOptions.bounce || mPass == 1);
     params.environmentForward = environment ? g.environment.radiance(frame.direction) : glm::vec3(0.0f);
     params.environmentBackward = environment ? g.environment.radiance(-frame.direction) : glm::vec3(0.0f);
     const float density = g.directions->hemispherePdf(frame.direction);
@@ -337,18 +330,15 @@ void AtlasMode::iterate(const IterationInfo& info) {
     }
     if (!g.directions) {
         // The seed decorrelates runs; directions are reproducible from (settings, seed).
-        g.directions = std::make_unique<DirectionSampler>(
-            sequenceOf(mSettings.getString(kDirections)), static_cast<std::uint32_t>(info.seed),
-            static_cast<std::uint32_t>(mSettings.getInt(kStrata)), g.importance.get(),
-            static_cast<float>(mSettings.getDouble(kImportanceOffset)));
-        g.order = std::make_unique<DirectionOrder>(sequenceOf(mSettings.getString(kDirections)),
-                                                   static_cast<std::uint32_t>(mSettings.getInt(kStrata)),
+        g.directions = std::make_unique<DirectionSampler>(mOptions.directions, static_cast<std::uint32_t>(info.seed),
+                                                          mOptions.strata, g.importance.get(),
+                                                          static_cast<float>(mOptions.importanceOffset));
+        g.order = std::make_unique<DirectionOrder>(mOptions.directions, mOptions.strata,
                                                    static_cast<std::uint32_t>(info.seed));
     }
     mTime = info.time;
     mSeed = info.seed;
-    const auto maxSegments = static_cast<std::uint32_t>(mSettings.getInt(kMaxSegments));
-    if (bounce() && maxSegments == 1) {
+    if (mOptions.bounce && mOptions.maxSegments == 1) {
         ++mIterations; // emitters only: nothing is reflected
         return;
     }
@@ -371,10 +361,10 @@ void AtlasMode::iterate(const IterationInfo& info) {
     // (emitters, environment) is fixed too, so it is the plain mean (j^k would only lose samples:
     // relMSE 2x higher at equal directions, measured); the multi-bounce channel weighs j^k, j
     // counted from its first direction.
-    const double k = mSettings.getDouble(kWeighting);
-    const auto passDirections = static_cast<std::uint32_t>(mSettings.getInt(kBounceDirections));
-    const double weight = bounce() || g.split ? 1.0 : std::pow(double(mIterations + 1), k);
-    const bool indirect = g.split && mIterations >= std::uint32_t(mSettings.getInt(kDelayIndirect));
+    const double k = mOptions.weighting;
+    const std::uint32_t passDirections = mOptions.bounceDirections;
+    const double weight = mOptions.bounce || g.split ? 1.0 : std::pow(double(mIterations + 1), k);
+    const bool indirect = g.split && mIterations >= mOptions.delayIndirect;
     const double weightIndirect = indirect ? std::pow(double(mIndirectDirections + 1), k) : 0.0;
 
     // How this direction's sender is formed: the estimate of the directions before it.
@@ -384,7 +374,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
     params.touched = addressOf(*mContext, g.touched);
     params.scale = mTotalWeight > 0.0 ? float(1.0 / mTotalWeight) : 0.0f;
     params.previous = mIterations - 1u; // the first direction: ~0u is the init pass's tag, whose stored glossy transfer is zero
-    params.transfer = bounce() ? shader::kAtlasTransferBounce : shader::kAtlasTransferInterleaved;
+    params.transfer = mOptions.bounce ? shader::kAtlasTransferBounce : shader::kAtlasTransferInterleaved;
     if (g.split) {
         params.split = 1u;
         params.sumsIndirect = addressOf(*mContext, g.sumsIndirect);
@@ -408,8 +398,8 @@ void AtlasMode::iterate(const IterationInfo& info) {
     update.direct = addressOf(*mContext, g.directRadiance);
     update.settled = addressOf(*mContext, g.settled);
     update.transfer = params.transfer;
-    const bool lastPass = maxSegments != 0 && mPass + 1 >= maxSegments;
-    update.settle = bounce() && !lastPass && std::uint32_t(mTotalWeight + weight) >= passDirections ? 1u : 0u;
+    const bool lastPass = mOptions.maxSegments != 0 && mPass + 1 >= mOptions.maxSegments;
+    update.settle = mOptions.bounce && !lastPass && std::uint32_t(mTotalWeight + weight) >= passDirections ? 1u : 0u;
     update.directIntoSender = mPass == 1 ? 1u : 0u;
     // A settling pass rewrites every side's sender; otherwise only the touched sides change.
     update.mode = update.settle != 0u ? shader::kAtlasUpdateAll : shader::kAtlasUpdateListed;
@@ -426,7 +416,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         const std::uint32_t slots = shader::kAtlasSides * g.texelCount;
-        if (mIterations == 0 && !bounce()) { // the sender records' constant part, once
+        if (mIterations == 0 && !mOptions.bounce) { // the sender records' constant part, once
             shader::AtlasUpdatePush init = update;
             init.mode = shader::kAtlasUpdateInit;
             g.updatePass.dispatch(cmd, init, vk::groupCount(slots, shader::kAtlasGroupSize));
@@ -486,7 +476,7 @@ AtlasMode::TexelRadiance AtlasMode::readTexels() const {
     out.reflected.resize(slots);
     for (std::size_t s = 0; s < slots; ++s) {
         out.reflected[s] = glm::vec3(sums[2 * s] + sums[2 * s + 1]) * scale + glm::vec3(settled[s]) +
-                           directScale() * glm::vec3(direct[s]);
+                           mOptions.directScale() * glm::vec3(direct[s]);
     }
     if (g.split) { // the multi-bounce channel
         g.sumsIndirect.download(*mContext, sums.data(), sums.size() * sizeof(glm::vec4));
@@ -514,9 +504,6 @@ std::uint32_t AtlasMode::directionIndex(std::uint32_t i) const {
     return g.shuffleDirections ? (*g.order)(i) : i;
 }
 
-bool AtlasMode::bounce() const { return mSettings.getString(kTransfer) == "bounce"; }
-
-float AtlasMode::directScale() const { return bounce() && mSettings.getInt(kMaxSegments) == 1 ? 0.0f : 1.0f; }
 
 PassTimes AtlasMode::timings() const {
     if (!mGpu) return {};

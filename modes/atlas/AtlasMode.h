@@ -119,6 +119,7 @@
 #pragma once
 
 #include "modes/Mode.h"
+#include "modes/atlas/AtlasModeOptions.h"
 
 #include <vulkan/vulkan.h>
 
@@ -209,11 +210,8 @@ private:
     // The sampler index of the i-th direction processed (shuffled in blocks for the glossy
     // transfer, DirectionOrder.h; else i).
     std::uint32_t directionIndex(std::uint32_t i) const;
-    bool bounce() const; // transfer = bounce
-    // 1, or 0 where max_segments = 1 leaves out all reflected light (the direct atlas included).
-    float directScale() const;
-
     Settings mSettings;
+    AtlasModeOptions mOptions; // mSettings, typed, read once
     const Scene* mScene = nullptr;
     vk::Context* mContext = nullptr;
     std::unique_ptr<Gpu> mGpu;

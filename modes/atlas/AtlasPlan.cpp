@@ -66,8 +66,9 @@ std::vector<ParamSpec> AtlasMode::parameters() {
 
 std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {
     const SceneFeatures f = scene.features();
-    const auto r = std::to_string(mSettings.getInt(kBundleResolution));
-    const auto a = std::to_string(mSettings.getInt(kAtlasResolution));
+    const AtlasModeOptions& o = mOptions;
+    const auto r = std::to_string(o.bundleResolution);
+    const auto a = std::to_string(o.atlasResolution);
     std::vector<PlannedPass> p;
     p.push_back({"atlas", true, a + "^2 texels per page over " + std::to_string(f.triangles) +
                                     " triangles, built once at set-up (charts, packing, exact texel areas)"});
@@ -77,8 +78,8 @@ std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {
     const bool shot = choice.runs;
     if (shot) {
         p.push_back({"first shot", true,
-                     std::to_string(mSettings.getInt(kEmitterPoints)) +
-                         " emitter point(s) per direction, a " + std::to_string(mSettings.getInt(kEmitterShadowResolution)) +
+                     std::to_string(o.emitterPoints) +
+                         " emitter point(s) per direction, a " + std::to_string(o.emitterShadowResolution) +
                          "^2 cube each, their light averaged over each texel's sample points into the direct atlas"});
     } else {
         p.push_back({"first shot", false, choice.why});
@@ -93,7 +94,7 @@ std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {
     p.push_back({"update", true,
                  "received radiance into compensated sums, only for the texel sides the direction touched (a list "
                  "the exchange appends to); the sender is formed where it is read"});
-    const auto delay = mSettings.getInt(kDelayIndirect);
+    const std::uint32_t delay = o.delayIndirect;
     if (delay > 0) {
         p.push_back({"delayed indirect", true,
                      "directions 1-" + std::to_string(delay) +
@@ -101,20 +102,20 @@ std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {
                          "(layer rest) estimates summed apart"});
     }
     if (f.shadowCastingLights() > 0) {
-        const auto n = std::to_string(mSettings.getInt(kLightSamples));
+        const auto n = std::to_string(o.lightSamples);
         p.push_back({"shadow maps", true,
                      std::to_string(f.shadowCastingLights()) + " point/spot light(s): one " +
-                         std::to_string(mSettings.getInt(kShadowResolution)) +
+                         std::to_string(o.shadowResolution) +
                          "^2 cube each, once; their light averaged over " + n + "x" + n +
                          " points per texel into a direct atlas (layer direct), the exchange's first sender"});
     } else {
         p.push_back({"shadow maps", false, "no point or spot lights"});
     }
-    const std::string glossy = mSettings.getString(kGlossy);
+    const std::string& glossy = o.glossy;
     if (!f.glossy) {
         p.push_back({"glossy transfer", false, "no glossy materials"});
         p.push_back({"glossy gather", false, "no glossy materials"});
-    } else if (glossy == "off" || mSettings.getString(kTransfer) == "bounce") {
+    } else if (glossy == "off" || o.bounce) {
         const std::string why = glossy == "off" ? "glossy = off" : "transfer = bounce (a pass's sender is fixed)";
         p.push_back({"glossy transfer", false, why + ": the lobes are NOT transported (their albedo only)"});
         p.push_back({"glossy gather", false, why + ": no glossy reflection toward the eye"});
@@ -133,7 +134,7 @@ std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {
                                  "sends through the lobe toward the eye") +
                          (lights ? "; point/spot lights' highlight per view sample" : "")});
     }
-    p.push_back({"view", true, std::to_string(mSettings.getInt(kViewSamples)) +
+    p.push_back({"view", true, std::to_string(o.viewSamples) +
                                    " jittered camera samples per pixel of the atlas at resolve (G-buffer + atlas uv raster)"});
     return p;
 }

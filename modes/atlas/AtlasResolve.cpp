@@ -16,7 +16,7 @@ using atlasmode::addressOf;
 
 ImageSet AtlasMode::resolve() {
     Gpu& g = sceneState(mGpu, name(), "resolve");
-    const auto samples = static_cast<std::uint32_t>(mSettings.getInt(kViewSamples));
+    const std::uint32_t samples = mOptions.viewSamples;
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
     g.camera->accumulator().clear(*mContext);
     shader::AtlasShadePush push{};
@@ -29,8 +29,8 @@ ImageSet AtlasMode::resolve() {
     push.atlasHeight = static_cast<std::uint32_t>(g.atlas.maps.height);
     push.reflectedScale = mTotalWeight > 0.0 ? float(1.0 / mTotalWeight) : 0.0f;
     push.settled = addressOf(*mContext, g.settled);
-    push.directScale = directScale();
-    push.bilinear = mSettings.getBool(kBilinear) ? 1u : 0u;
+    push.directScale = mOptions.directScale();
+    push.bilinear = mOptions.bilinear ? 1u : 0u;
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
     push.environmentRotation = g.scene->environmentRotation();
     push.direct = addressOf(*mContext, g.directRadiance);
