@@ -9,6 +9,13 @@
 
 namespace bl {
 
+DirectionSequence directionSequenceNamed(std::string_view name) {
+    if (name == "random") return DirectionSequence::Random;
+    if (name == "stratified") return DirectionSequence::Stratified;
+    if (name == "importance") return DirectionSequence::Importance;
+    return DirectionSequence::Halton;
+}
+
 namespace {
 constexpr float kUniformSpherePdf = 1.0f / (4.0f * shader::kPi);
 }

@@ -13,9 +13,13 @@
 
 #include <glm/glm.hpp>
 
+#include <string_view>
+
 namespace bl {
 
 enum class DirectionSequence { Halton, Random, Stratified, Importance };
+// The sequence a `directions` setting names: "random", "stratified", "importance", else Halton.
+DirectionSequence directionSequenceNamed(std::string_view name);
 
 struct BundleDirection {
     glm::vec3 omega{0, 0, 1};

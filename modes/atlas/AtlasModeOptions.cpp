@@ -4,24 +4,13 @@
 
 namespace bl {
 
-namespace {
-
-DirectionSequence sequenceOf(const std::string& name) {
-    if (name == "random") return DirectionSequence::Random;
-    if (name == "stratified") return DirectionSequence::Stratified;
-    if (name == "importance") return DirectionSequence::Importance;
-    return DirectionSequence::Halton;
-}
-
-} // namespace
-
 AtlasModeOptions atlasModeOptions(const Settings& s) {
     using M = AtlasMode;
     const auto uint32Of = [&](const char* key) { return static_cast<std::uint32_t>(s.getInt(key)); };
     AtlasModeOptions o;
     o.atlasResolution = uint32Of(M::kAtlasResolution);
     o.bundleResolution = uint32Of(M::kBundleResolution);
-    o.directions = sequenceOf(s.getString(M::kDirections));
+    o.directions = directionSequenceNamed(s.getString(M::kDirections));
     o.strata = uint32Of(M::kStrata);
     o.importanceOffset = s.getDouble(M::kImportanceOffset);
     o.weighting = s.getDouble(M::kWeighting);

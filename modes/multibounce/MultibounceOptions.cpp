@@ -11,7 +11,7 @@ MultibounceOptions multibounceOptions(const Settings& s) {
     o.bundleCount = uint32Of(M::kBundleCount);
     o.pathsPerPixel = uint32Of(M::kPathsPerPixel);
     o.bundleResolution = uint32Of(M::kBundleResolution);
-    o.directions = s.getString(M::kDirections) == "random" ? DirectionSequence::Random : DirectionSequence::Halton;
+    o.directions = directionSequenceNamed(s.getString(M::kDirections));
     o.maxSegments = uint32Of(M::kMaxSegments);
     o.rrSegments = uint32Of(M::kRrSegments);
     o.shadowResolution = uint32Of(M::kShadowResolution);

@@ -18,12 +18,6 @@
 namespace bl {
 
 namespace {
-DirectionSequence sequenceOf(const std::string& name) {
-    if (name == "random") return DirectionSequence::Random;
-    if (name == "stratified") return DirectionSequence::Stratified;
-    if (name == "importance") return DirectionSequence::Importance;
-    return DirectionSequence::Halton;
-}
 
 glm::uvec2 split(VkDeviceAddress a) {
     return {static_cast<std::uint32_t>(a & 0xffffffffu), static_cast<std::uint32_t>(a >> 32)};
@@ -142,7 +136,7 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
     }
     g->bounds = scene.bounds();
-    const DirectionSequence sequence = sequenceOf(mSettings.getString(kDirections));
+    const DirectionSequence sequence = directionSequenceNamed(mSettings.getString(kDirections));
     if (sequence == DirectionSequence::Importance && !scene.environment.present) {
         throw Error("skylight: directions=importance needs an environment in the scene");
     }
@@ -177,7 +171,7 @@ void SkylightMode::iterate(const IterationInfo& info) {
     Gpu& g = sceneState(mGpu, name(), "iterate");
     if (!g.directions) {
         g.directions = std::make_unique<DirectionSampler>(
-            sequenceOf(mSettings.getString(kDirections)), static_cast<std::uint32_t>(info.seed),
+            directionSequenceNamed(mSettings.getString(kDirections)), static_cast<std::uint32_t>(info.seed),
             static_cast<std::uint32_t>(mSettings.getInt(kStrata)), g.environment.get(),
             static_cast<float>(mSettings.getDouble(kImportanceOffset)));
     }
