@@ -56,7 +56,7 @@ std::vector<ParamSpec> SkylightMode::parameters() {
 
 std::unique_ptr<Mode> SkylightMode::create(const Settings& settings) { return std::make_unique<SkylightMode>(settings); }
 
-SkylightMode::SkylightMode(const Settings& settings) : mSettings(settings) {}
+SkylightMode::SkylightMode(const Settings& settings) : mSettings(settings), mOptions(skylightOptions(settings)) {}
 
 struct SkylightMode::Gpu {
     std::unique_ptr<gpu::GpuScene> scene;
@@ -89,7 +89,7 @@ std::vector<PlannedPass> SkylightMode::plan(const Scene& scene) const {
     p.push_back({"gbuffer", true, std::to_string(f.triangles) + " triangles, jittered every iteration"});
     const bool env = f.environment;
     p.push_back({"bundle build", env,
-                 env ? std::to_string(mSettings.getInt(kBundleResolution)) + "^2 bundle of every triangle per direction"
+                 env ? std::to_string(mOptions.bundleResolution) + "^2 bundle of every triangle per direction"
                      : "no environment: no light to test visibility for"});
     p.push_back({"visibility", env, env ? "one list walk per visible point per direction" : "no environment"});
     if (f.shadowCastingLights() || f.emissiveMeshes) {
@@ -114,29 +114,28 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kSkylightAccumLayers);
     g->gbuffer = &g->camera->gbuffer();
     BundleBuilderOptions options;
-    options.memoryCapBytes = static_cast<std::uint64_t>(mSettings.getInt(kMemoryCap)) << 20;
-    const std::string backend = mSettings.getString(kBundleBackend);
+    options.memoryCapBytes = mOptions.memoryCapBytes;
+    const std::string& backend = mOptions.bundleBackend;
     // auto: compute where it was measured faster (lavapipe), raster on GPUs (experiments/gpu/README.md).
     const bool cpuDevice = ctx->info().type == "CPU";
     options.backend = backend == "compute" || (backend == "auto" && cpuDevice && ComputeBundleRasterizer::supported(*ctx))
                           ? BundleBackend::Compute
                           : BundleBackend::Raster;
     g->builder = std::make_unique<BundleBuilder>(*ctx, *g->scene, options);
-    const bool depthMapVisibility = mSettings.getString(kVisibility) == "depth_map";
+    const bool depthMapVisibility = mOptions.depthMapVisibility;
     if (depthMapVisibility) {
-        g->depthMap = std::make_unique<DepthMapPass>(*ctx, *g->scene,
-                                                     static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution)));
+        g->depthMap = std::make_unique<DepthMapPass>(*ctx, *g->scene, mOptions.bundleResolution);
     } else {
         g->placeholder = vk::GpuImage(*ctx, {1, 1, 1, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
     }
     g->environment = std::make_unique<EnvironmentLight>(scene.environment, true);
-    if (mSettings.getString(kControlVariate) == "on") {
+    if (mOptions.controlVariate) {
         const IrradianceTable table(scene.environment);
         g->irradiance = vk::makeBuffer(*ctx, std::span<const glm::vec4>(table.entries()),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
     }
     g->bounds = scene.bounds();
-    const DirectionSequence sequence = directionSequenceNamed(mSettings.getString(kDirections));
+    const DirectionSequence sequence = mOptions.directions;
     if (sequence == DirectionSequence::Importance && !scene.environment.present) {
         throw Error("skylight: directions=importance needs an environment in the scene");
     }
@@ -170,14 +169,13 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
 void SkylightMode::iterate(const IterationInfo& info) {
     Gpu& g = sceneState(mGpu, name(), "iterate");
     if (!g.directions) {
-        g.directions = std::make_unique<DirectionSampler>(
-            directionSequenceNamed(mSettings.getString(kDirections)), static_cast<std::uint32_t>(info.seed),
-            static_cast<std::uint32_t>(mSettings.getInt(kStrata)), g.environment.get(),
-            static_cast<float>(mSettings.getDouble(kImportanceOffset)));
+        g.directions = std::make_unique<DirectionSampler>(mOptions.directions, static_cast<std::uint32_t>(info.seed),
+                                                          mOptions.strata, g.environment.get(),
+                                                          static_cast<float>(mOptions.importanceOffset));
     }
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
     // A new jittered G-buffer every gbuffer_reuse directions, and whenever the scene's time moved.
-    const auto reuse = static_cast<std::uint32_t>(mSettings.getInt(kGBufferReuse));
+    const std::uint32_t reuse = mOptions.gbufferReuse;
     const bool freshGBuffer = !g.gbufferSample || mIterations % reuse == 0 || g.gbufferSample->time != info.time;
     if (freshGBuffer) {
         g.gbufferSample = g.camera->sample(mIterations / reuse, true, info.time, info.seed);
@@ -190,10 +188,10 @@ void SkylightMode::iterate(const IterationInfo& info) {
     const gpu::CameraSample& sample = *g.gbufferSample;
 
     const BundleDirection dir = g.directions->sample(mIterations);
-    const float rotation = mSettings.getBool(kRotate) ? dir.rotation : 0.0f;
-    const std::uint32_t resolution = static_cast<std::uint32_t>(mSettings.getInt(kBundleResolution));
+    const float rotation = mOptions.rotate ? dir.rotation : 0.0f;
+    const std::uint32_t resolution = mOptions.bundleResolution;
     const Bounds& bounds = g.bounds;
-    if (mSettings.getString(kFit) == "visible" && freshGBuffer) {
+    if (mOptions.fitVisible && freshGBuffer) {
         // The visible points of this iteration's G-buffer: no margin covers jitter (at a silhouette
         // it moves a pixel's point onto another surface), so the frame is fitted to the points the
         // visibility pass will look up, every iteration.

@@ -39,6 +39,7 @@
 #include "bundle/DirectionSampler.h"
 #include "gpu/CameraPass.h"
 #include "modes/Mode.h"
+#include "modes/skylight/SkylightOptions.h"
 
 #include <memory>
 
@@ -76,6 +77,7 @@ public:
 private:
     struct Gpu;
     Settings mSettings;
+    SkylightOptions mOptions; // mSettings, typed, read once
     const Scene* mScene = nullptr;
     vk::Context* mContext = nullptr;
     std::unique_ptr<Gpu> mGpu;
