@@ -7,9 +7,9 @@ packages=(
     cmake ninja-build g++ pkg-config git
     # Vulkan: loader, headers, lavapipe (the default device), validation layers, shader compiler
     libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-tools spirv-tools
-    # Maths, geometry, images, configuration, command line, Mitsuba XML scenes
+    # Maths, geometry, images, configuration, command line, Mitsuba XML and glTF scenes
     libglm-dev libeigen3-dev libopenmesh-dev libopenexr-dev libstb-dev libtomlplusplus-dev
-    libcli11-dev libtinyobjloader-dev libpugixml-dev
+    libcli11-dev libtinyobjloader-dev libpugixml-dev libtinygltf-dev
     # CPU reference path tracer
     libembree-dev libtbb-dev
     # Tests, benchmarks, plots, and headless Chromium for the report's browser test

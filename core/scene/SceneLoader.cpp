@@ -7,6 +7,7 @@
 #include "scene/MeshCleanup.h"
 #include "scene/MeshFile.h"
 #include "scene/MeshTransform.h"
+#include "scene/GltfLoader.h"
 #include "scene/MitsubaLoader.h"
 #include "scene/MtlLoader.h"
 #include "scene/ScenePrecision.h"
@@ -539,7 +540,10 @@ Scene loadScene(const std::string& path) {
     }
     std::string ext = fs::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    Scene scene = ext == ".toml" ? loadTomlScene(path) : ext == ".xml" ? loadMitsubaScene(path) : loadBareMesh(path);
+    Scene scene = ext == ".toml"                     ? loadTomlScene(path)
+                  : ext == ".xml"                    ? loadMitsubaScene(path)
+                  : ext == ".gltf" || ext == ".glb" ? loadGltfScene(path)
+                                                     : loadBareMesh(path);
     requireRepresentable(scene);
     if (recentreFarScene(scene)) {
         log::info(path + ": far from the origin; renderers work relative to its centre " + formatNumber(scene.origin.x) +
