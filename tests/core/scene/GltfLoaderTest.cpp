@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 
 using namespace bl;
@@ -47,6 +48,20 @@ std::string triangleFile(const std::string& name, const std::string& body, const
 }
 
 const char* kTriangleMesh = R"("meshes": [{"name": "tri", "primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "material": 0}]}])";
+
+// A 2 x 1 24-bit BMP (stb reads it; tinygltf takes image/bmp data URIs): left texel red 200,
+// right texel green 100, as a data URI.
+std::string bmpDataUri() {
+    std::vector<unsigned char> b = {'B', 'M'};
+    const auto u32 = [&](std::uint32_t v) { for (int i = 0; i < 4; ++i) b.push_back(static_cast<unsigned char>(v >> (8 * i))); };
+    const auto u16 = [&](std::uint16_t v) { for (int i = 0; i < 2; ++i) b.push_back(static_cast<unsigned char>(v >> (8 * i))); };
+    u32(54 + 8); u32(0); u32(54);                 // file size, reserved, pixel offset
+    u32(40); u32(2); u32(1); u16(1); u16(24);     // info header: size, width, height, planes, bits
+    u32(0); u32(8); u32(2835); u32(2835); u32(0); u32(0);
+    b.insert(b.end(), {0, 0, 200, 0, 100, 0, 0, 0}); // BGR BGR + row padding to 4 bytes
+    std::string uri = bl::test::base64DataUri(b);
+    return "data:image/bmp;base64," + uri.substr(uri.find(',') + 1);
+}
 
 } // namespace
 
@@ -178,6 +193,29 @@ TEST(GltfLoader, RefusesWhatItCannotHold) {
     EXPECT_NE(missing.find("no-such.glb"), std::string::npos) << missing;
     const std::string broken = errorOf([] { loadScene(bl::test::writeTempFile("broken.gltf", "{\"asset\": ")); });
     EXPECT_NE(broken.find("broken.gltf"), std::string::npos) << broken;
+}
+
+// A base colour texture: its sRGB texels kept where the factor is 1, the factor multiplied in
+// (in linear, re-encoded) where it is not; the UVs flipped to the scene model's v-up.
+TEST(GltfLoader, BaseColourTexturesKeepTheirTexels) {
+    const std::string images = R"("textures": [{"source": 0}], "images": [{"uri": ")" + bmpDataUri() + R"("}])";
+    const Scene s = loadScene(triangleFile("textured.gltf", std::string(kTriangleMesh) + R"(,
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0}}], )" + images + R"(,
+        "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}])"));
+    const Material& m = s.materials.at(s.meshes.at(0).material);
+    ASSERT_GE(m.albedoTexture, 0);
+    const Rgba8Image& t = s.textures.at(std::size_t(m.albedoTexture)).image;
+    ASSERT_EQ(t.width, 2);
+    ASSERT_EQ(t.height, 1);
+    EXPECT_EQ(std::vector<unsigned char>(t.texels.begin(), t.texels.begin() + 8),
+              (std::vector<unsigned char>{200, 0, 0, 255, 0, 100, 0, 255}));
+    const Scene half = loadScene(triangleFile("textured-half.gltf", std::string(kTriangleMesh) + R"(,
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "baseColorFactor": [0.5, 1, 1, 1], "metallicFactor": 0}}], )" +
+        images + R"(, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}])"));
+    const Rgba8Image& h = half.textures.at(0).image;
+    EXPECT_EQ(h.texels[0], static_cast<unsigned char>(std::lround(linearToSrgb(0.5f * srgbToLinear(200 / 255.0f)) * 255.0f)));
+    EXPECT_EQ(h.texels[5], 100); // green untouched by a red factor
+    EXPECT_TRUE(noted(half, "base colour factor multiplied into its texture"));
 }
 
 // The GLB container holds the same scene as the .gltf: written both ways, read back the same.
