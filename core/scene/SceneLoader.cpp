@@ -100,13 +100,12 @@ void requireNonNegative(StrictTable& t, const std::string& key, glm::vec3 v) {
 // the same steps: it comes out up to one step off, a relative error of 1 / spotConeSteps. Measured
 // (raster and reference alike, lit fraction of a view just wider than the cone): 0.01 degrees
 // renders black, 0.03 -32 %, 0.05 -13 %, 0.1 and wider within 1 %.
-constexpr double kMinConeSteps = 10.0;   // up to 10 % off: refused (half-angle under ~0.063 degrees)
 constexpr double kWarnConeSteps = 100.0; // up to 1 % off: a warning (half-angle under ~0.2 degrees)
 void requireRenderableCone(StrictTable& t, float coneDegrees) {
     const double steps = spotConeSteps(coneDegrees);
     const std::string what = "cone_angle " + formatNumber(coneDegrees) + " degrees: its cosine is " +
                              formatNumber(steps) + " float steps (2^-24) below 1";
-    if (steps < kMinConeSteps) {
+    if (steps < kMinSpotConeSteps) { // up to 10 % off: refused (half-angle under ~0.063 degrees)
         t.fail("cone_angle", what + ", so 32-bit floats render its lit area up to " +
                                  (steps < 1.0 ? std::string("100 % off (black)") : formatNumber(100.0 / steps) + " % off") +
                                  "; the narrowest cone rendered within 10 % is about 0.063 degrees");

@@ -275,7 +275,7 @@ void BidirMode::iterate(const IterationInfo& info) {
     if (!g.directions) {
         // The seed decorrelates runs; directions are reproducible from (settings, seed).
         g.directions = std::make_unique<DirectionSampler>(
-            o.haltonDirections ? DirectionSequence::Halton : DirectionSequence::Random, static_cast<std::uint32_t>(info.seed));
+            o.directions, static_cast<std::uint32_t>(info.seed));
     }
     // The G-buffer first: fit = visible fits this frame's bundles to the points it sees.
     const gpu::CameraSample sample = mInterleave->cameraSample(g.camera->sample(mIterations, true, info.time, info.seed),

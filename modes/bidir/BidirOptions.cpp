@@ -38,7 +38,7 @@ BidirOptions bidirOptions(const Settings& s) {
     o.bounces = uint32Of(s, M::kBounces);
     o.twoBounceClamp = s.getDouble(M::kTwoBounceClamp);
     o.bundleResolution = uint32Of(s, M::kBundleResolution);
-    o.haltonDirections = s.getString(M::kDirections) == "halton";
+    o.directions = directionSequenceNamed(s.getString(M::kDirections));
     o.fitVisible = s.getString(M::kFit) == "visible";
     o.memoryCapBytes = static_cast<std::uint64_t>(s.getInt(M::kMemoryCap)) << 20;
     o.shadowResolution = uint32Of(s, M::kShadowResolution);

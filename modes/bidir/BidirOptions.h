@@ -2,6 +2,7 @@
 // so that none of them re-reads a setting as a string and all three read the same values.
 #pragma once
 
+#include "bundle/DirectionSampler.h"
 #include "config/Settings.h"
 #include "scene/Scene.h"
 
@@ -17,7 +18,7 @@ struct BidirOptions {
     std::uint32_t bounces = 1;              // bounces: 1, or 2 (two-bounce paths)
     double twoBounceClamp = 0.0;            // two_bounce_clamp, of the scene's radius
     std::uint32_t bundleResolution = 0;     // bundle_resolution
-    bool haltonDirections = false;          // directions = halton (else random)
+    DirectionSequence directions = DirectionSequence::Random; // directions: random | halton
     bool fitVisible = false;                // fit = visible (else the scene's sphere)
     std::uint64_t memoryCapBytes = 0;       // memory_cap_mib, in bytes
     std::uint32_t shadowResolution = 0;     // shadow_resolution: the lights' cubes

@@ -101,11 +101,11 @@ TEST(GltfLoader, MirroringTransformKeepsTheFrontFace) {
     EXPECT_GT(glm::dot(geometric, m.normals[t.x]), 0.0f) << "winding and normal disagree";
 }
 
-// Materials: metallic 1, roughness 0.5 -> Phong exponent 2 / 0.5^4 - 2 = 30 with the base colour as
+// Materials: metallic 1, roughness 0.5 -> Phong exponent (2 / 0.5^4 - 2) / 4 = 7.5 with the base colour as
 // its reflectance; the default material (none given: metallic 1, roughness 1, a lobe wider than
 // Phong's exponent 1) reads as Lambert of albedo 1; emission x KHR_materials_emissive_strength.
 TEST(GltfLoader, MaterialsMapToLambertAndPhong) {
-    EXPECT_DOUBLE_EQ(phongExponentOfRoughness(0.5), 30.0);
+    EXPECT_DOUBLE_EQ(phongExponentOfRoughness(0.5), 7.5);
     EXPECT_DOUBLE_EQ(phongExponentOfRoughness(0.0), 1e6);
     const Scene s = loadScene(triangleFile("materials.gltf", R"("meshes": [{"primitives": [
             {"attributes": {"POSITION": 0}, "indices": 3, "material": 0},
@@ -119,7 +119,7 @@ TEST(GltfLoader, MaterialsMapToLambertAndPhong) {
     const Material& metal = s.materials[s.meshes[0].material];
     EXPECT_TRUE(near(metal.specular, {0.9f, 0.6f, 0.3f}));
     EXPECT_TRUE(near(metal.albedo, {0, 0, 0}));
-    EXPECT_FLOAT_EQ(metal.exponentU, 30.0f);
+    EXPECT_FLOAT_EQ(metal.exponentU, 7.5f);
     EXPECT_TRUE(near(s.meshes[1].emission, {4, 2, 0}));
     EXPECT_TRUE(near(s.materials[s.meshes[2].material].albedo, {1, 1, 1}));
     EXPECT_FALSE(s.materials[s.meshes[2].material].glossy());

@@ -366,7 +366,9 @@ void expectChannelMeans(const std::vector<ImageSet>& runs, const ImageSet& refer
 // plus d, the share of segments whose end the splats move (a hole: the ray passes through a
 // surface; a splat reaching past an edge: it stops where no surface is), measured on the geometry
 // alone (SplatCoverage.h: 16 directions at the mode's settings against perfect bundles of the same
-// frames). A moved segment loses or substitutes at most its own path's light, as a misassigned one.
+// frames). An empirical bound, not a derived one: it takes a moved segment to lose or substitute
+// at most its own path's light, which holds for losses but not for a hole that shows a brighter
+// surface behind, and d counts segments, not light.
 double imperfectSegmentBound(const vk::Context& ctx, const Scene& s, double splatScale, std::uint32_t points) {
     const double f = bundleMisassignment(s, kBundleResolution);
     const double d =
