@@ -12,6 +12,8 @@ packages=(
     libcli11-dev libtinyobjloader-dev libpugixml-dev libtinygltf-dev
     # CPU reference path tracer
     libembree-dev libtbb-dev
+    # The Python module (pybind11) and its tests
+    pybind11-dev python3-dev python3-pytest
     # Tests, benchmarks, plots, and headless Chromium for the report's browser test
     libgtest-dev libgmock-dev libbenchmark-dev python3-matplotlib python3-numpy chromium
 )

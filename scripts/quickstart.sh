@@ -7,6 +7,12 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 scripts/install-deps.sh
 scripts/build.sh
+# `import bundlelab` for /usr/bin/python3: a .pth file in its site-packages naming build/python.
+site=$(/usr/bin/python3 -c 'import site; print(site.getsitepackages()[0])')
+if ! { mkdir -p "$site" && echo "$root/build/python" >"$site/bundlelab.pth"; } 2>/dev/null; then
+    site=$(/usr/bin/python3 -m site --user-site)
+    mkdir -p "$site" && echo "$root/build/python" >"$site/bundlelab.pth"
+fi
 out=results/quickstart
 build/bundlelab run experiments/quickstart.toml --out "$out"
 build/bundlelab report "$out"

@@ -1,0 +1,65 @@
+"""`import bundlelab` (python/BundlelabModule.cpp): the module's functions against the CLI's meaning.
+Run by ctest (python.module) with PYTHONPATH at build/python."""
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import bundlelab
+
+ROOT = os.environ.get("BL_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+CORNELL = os.path.join(ROOT, "data", "cornell-box", "cornell-point.toml")
+sys.path.insert(0, os.path.join(ROOT, "experiments", "stress"))
+import exr  # noqa: E402  (the stress suite's EXR reader, standard library only)
+
+
+def test_modes_list_their_parameters():
+    modes = {m["name"]: m for m in bundlelab.modes()}
+    assert {"reference", "raster", "multibounce", "bidir", "atlas", "skylight"} <= set(modes)
+    params = {p["name"]: p for p in modes["multibounce"]["parameters"]}
+    assert params["bundle_count"]["default"] == 64
+    assert modes["reference"]["needs_gpu"] is False
+
+
+def test_reference_render_is_the_seeds_and_layers_add_up():
+    scene = bundlelab.load_scene(CORNELL)
+    assert scene.triangles > 0 and scene.lights == 1
+    a = bundlelab.render(scene, "reference", iterations=4, seed=3, width=16, height=16)
+    b = bundlelab.render(scene, "reference", iterations=4, seed=3, width=16, height=16)
+    assert a["radiance"].shape == (16, 16, 3) and a["radiance"].dtype == np.float32
+    np.testing.assert_array_equal(a["radiance"], b["radiance"])  # same seed, same image
+    assert a["iterations"] == 4 and a["seconds"] > 0
+    layers = sum(a[k] for k in ("emitted", "direct", "indirect1", "indirect2", "rest"))
+    np.testing.assert_allclose(layers, a["radiance"], rtol=1e-5, atol=1e-6)
+    assert np.isfinite(a["radiance"]).all() and a["radiance"].mean() > 0
+
+
+def test_gpu_render_is_the_clis_image_and_compare_measures_it(tmp_path):
+    # The same mode, settings, size and seed through the CLI: the same pixels, bit for bit.
+    cli = os.environ.get("BL_BUNDLELAB", os.path.join(ROOT, "build", "bundlelab"))
+    out = tmp_path / "raster.exr"
+    subprocess.run([cli, "render", CORNELL, "--mode", "raster", "--width", "16", "--height", "16", "--iterations", "4",
+                    "--seed", "3", "--set", "shadow_resolution=256", "--out", str(out)], check=True,
+                   stdout=subprocess.DEVNULL)
+    width, height, pixels = exr.read_rgb(str(out))
+    from_cli = np.array(pixels, dtype=np.float32).reshape(height, width, 3)
+    scene = bundlelab.load_scene(CORNELL)
+    scene.resolution = (16, 16)
+    raster = bundlelab.render(scene, "raster", settings={"shadow_resolution": 256}, iterations=4, seed=3)
+    np.testing.assert_array_equal(raster["radiance"], from_cli)
+    same = bundlelab.compare(raster["radiance"], from_cli)
+    assert same["mse"] == 0.0 and same["mean_ratio"] == (1.0, 1.0, 1.0)
+    darker = bundlelab.compare(0.5 * raster["radiance"], from_cli)
+    np.testing.assert_allclose(darker["mean_ratio"], (0.5, 0.5, 0.5), rtol=1e-6)
+
+
+def test_errors_are_exceptions_with_the_clis_messages():
+    with pytest.raises(RuntimeError, match="no-such.toml: file not found"):
+        bundlelab.load_scene("no-such.toml")
+    scene = bundlelab.load_scene(CORNELL)
+    with pytest.raises(RuntimeError, match="bundle_count"):
+        bundlelab.render(scene, "multibounce", settings={"bundle_count": 0}, iterations=1)
+    with pytest.raises(RuntimeError, match="unknown mode|no mode"):
+        bundlelab.render(scene, "no-such-mode", iterations=1)
