@@ -1,5 +1,5 @@
 // The texture atlas of a scene, the discretization of the `atlas` mode (Hermes et al. 2010,
-// EQUATIONS.md section 4): charts (core/atlas/Charting.h), flattened (Parameterization.h),
+// papers/EQUATIONS.md [HHGM10 Eq. 3]): charts (core/atlas/Charting.h), flattened (Parameterization.h),
 // packed (Packing.h), and per-texel maps of the whole scene.
 //
 // Coverage: every texel a triangle touches is covered (conservatively, in software: lavapipe has no

@@ -1,4 +1,4 @@
-// A pool of K resident global ray-bundles (EQUATIONS.md section 1), recorded by the mode into its
+// A pool of K resident global ray-bundles ([RB 1], papers/EQUATIONS.md), recorded by the mode into its
 // own command buffers: one node pool, one allocator and K head slices, so a mode can build many
 // bundles in one submission and keep all of them for later passes (multibounce reuses K
 // omnidirectional bundles per frame; bidir builds one per VPL pair; atlas one per direction).

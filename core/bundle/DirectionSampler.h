@@ -1,4 +1,4 @@
-// Bundle directions on the sphere, with their densities (EQUATIONS.md section 1 and [TO12] Eq. 2).
+// Bundle directions on the sphere, with their densities ([RB 3] and [TO12 Eq. 2], papers/EQUATIONS.md).
 //
 // A bundle direction omega serves both omega and -omega; a point with normal n uses the one in
 // its hemisphere, whose density among that hemisphere's directions is

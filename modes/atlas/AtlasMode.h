@@ -1,5 +1,5 @@
 // Mode `atlas`: diffuse global illumination by radiance exchange in a texture atlas along global
-// ray-bundles ([HHGM10] Hermes, Henrich, Grosch, Mueller, VMV 2010; EQUATIONS.md sections 1 and 4;
+// ray-bundles ([HHGM10] Hermes, Henrich, Grosch, Mueller, VMV 2010; [HHGM10 Eq. 3], [HHGM10 §5.3] in papers/EQUATIONS.md;
 // papers/hermes-2010.md).
 //
 // Discretization. Every surface is a set of atlas texels (core/atlas); each texel T stands for the

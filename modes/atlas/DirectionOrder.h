@@ -1,5 +1,5 @@
 // The order in which the atlas processes its global directions when the glossy transfer is on
-// ([HHGM10] section 5.4, EQUATIONS.md section 4). The transfer stores at direction i what a lobe
+// ([HHGM10 §5.4], papers/EQUATIONS.md). The transfer stores at direction i what a lobe
 // reflects toward omega_{i+1}, and its estimate is unbiased only if omega_{i+1} is independent of
 // omega_i. No sequence gives that in its own order: consecutive Halton points (bases 5 and 7, also
 // under directions = importance) sit at nearly fixed offsets from each other (+30% on the glossy

@@ -1,5 +1,5 @@
-// Mode `bidir`: real-time bidirectional path tracing by rasterization ([TO12], EQUATIONS.md
-// section 2): camera sub-paths by global ray-bundles, light sub-paths by virtual point lights,
+// Mode `bidir`: real-time bidirectional path tracing by rasterization ([TO12 Eq. 3]-[TO12 Eq. 8],
+// papers/EQUATIONS.md): camera sub-paths by global ray-bundles, light sub-paths by virtual point lights,
 // combined by multiple importance sampling.
 //
 // One iterate() = one frame: G-buffer, the lights' shadow cubes, then K pairs (pairs_per_frame) of

@@ -1,5 +1,5 @@
-// Light sub-paths of mode bidir from reflective shadow maps on the GPU ([TO12] section 4.1,
-// EQUATIONS.md section 2; `vpl_source = rsm`): per frame, each point/spot light's cube of N^2
+// Light sub-paths of mode bidir from reflective shadow maps on the GPU ([TO12 §4.1],
+// papers/EQUATIONS.md; `vpl_source = rsm`): per frame, each point/spot light's cube of N^2
 // faces is rendered by the G-buffer pass from the light (position, normal, textured albedo,
 // material) with a fresh uniform sub-texel jitter per face, and VPL k is sampled on the GPU
 // (shaders/modes/bidir/rsm_sample.comp.glsl): light l uniformly (P(l) = 1 / L), then a texel by the

@@ -1,5 +1,5 @@
 // Light sub-paths of mode bidir: one virtual point light (VPL) per pair, the first surface a ray
-// from a point or spot light meets ([TO12] section 4.1, EQUATIONS.md section 2).
+// from a point or spot light meets ([TO12 §4.1], papers/EQUATIONS.md).
 //
 // Sampling (the densities the estimator divides by, exactly):
 //   light l            uniformly among the scene's point/spot lights: P(l) = 1 / L

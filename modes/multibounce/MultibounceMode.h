@@ -1,5 +1,5 @@
 // Mode `multibounce`: global illumination of any path length by reusing K resident omnidirectional
-// global ray-bundles ([TO12] section 7; EQUATIONS.md sections 1 and 3; papers/tokuyoshi-ogaki-2012-poster.md).
+// global ray-bundles ([TO12 §7], [TO12p]; papers/EQUATIONS.md; papers/tokuyoshi-ogaki-2012-poster.md).
 //
 // One iteration = K bundles + paths_per_pixel camera paths per pixel. The K bundles are built first, all kept
 // in one BundlePool with the hit payload and depth-sorted lists, each frame covering the scene's

@@ -1,4 +1,4 @@
-// Imperfect bundles ([TO12p], EQUATIONS.md section 3): per iteration, a different set of N points
+// Imperfect bundles ([TO12p], papers/EQUATIONS.md): per iteration, a different set of N points
 // per direction, uniform by area over all surfaces, turned into tangent-plane splats for
 // BundlePool::recordBuild (BundleGeometry::pointSplats) plus what a path vertex found on a splat
 // needs (MultibouncePoint: shading normal, triangle, and the UV as a linear function of position in

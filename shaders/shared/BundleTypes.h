@@ -1,4 +1,4 @@
-// Global ray-bundles (EQUATIONS.md section 1): per-pixel linked lists of every surface crossing
+// Global ray-bundles ([RB 1], papers/EQUATIONS.md): per-pixel linked lists of every surface crossing
 // along parallel rays. Defined once for the host and the shaders.
 //
 // A bundle's frame is an orthographic camera looking along `direction`: pixel (i, j)'s ray is

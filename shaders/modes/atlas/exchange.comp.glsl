@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Mode atlas, one direction's radiance exchange ([HHGM10] Eq. 3; EQUATIONS.md section 4;
+// Mode atlas, one direction's radiance exchange ([HHGM10 Eq. 3]; papers/EQUATIONS.md;
 // the estimator is derived in modes/atlas/AtlasMode.h). One invocation per bundle pixel walks its
 // depth-sorted list: consecutive hits y (shallower) and x (deeper) see each other along omega, so
 // x's side facing -omega receives the sender radiance of y's side facing +omega and y's side facing

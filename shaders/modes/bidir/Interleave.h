@@ -1,5 +1,5 @@
-// Host/device definitions of bidir's spatio-temporal interleaved sampling ([TO12s] A,
-// EQUATIONS.md section 2; modes/bidir/Interleaving.h drives it, shaders/modes/bidir/
+// Host/device definitions of bidir's spatio-temporal interleaved sampling ([TO12s Eq. 1],
+// [TO12s Eq. 3] in papers/EQUATIONS.md; modes/bidir/Interleaving.h drives it, shaders/modes/bidir/
 // interleave.comp.glsl resolves it).
 //
 // Spatial: the image is split into n x n sub-images, sub-image s = (p.y mod n) n + (p.x mod n)

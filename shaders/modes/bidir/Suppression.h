@@ -1,4 +1,4 @@
-// Glossy artifact suppression of mode bidir ([TO12] section 5, Eq. 9-17, EQUATIONS.md section 2):
+// Glossy artifact suppression of mode bidir ([TO12 Eq. 9]-[TO12 Eq. 14–17], papers/EQUATIONS.md):
 // the glossy lobe's distribution D is read as a density kernel whose peak may not exceed the
 // local directional sample density over m neighbours, max D <= d(y_i) / m (Eq. 9).
 //   none       the BRDF as it is (unbiased, spiky where samples are sparse)

@@ -1,14 +1,14 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Mode bidir, evaluation at every camera-visible point x3 = x (normal n turned toward the camera)
-// of K VPL/bundle pairs ([TO12] Eq. 3-6, EQUATIONS.md section 2). Pair k contributes one-bounce
+// of K VPL/bundle pairs ([TO12 Eq. 3]-[TO12 Eq. 6], papers/EQUATIONS.md). Pair k contributes one-bounce
 // paths x0 -> x_j -> x by two strategies:
 //   j = 1 (VPL): x_j = y_k, the VPL (host-sampled light ray, area density p_A1(y) =
 //     P(l) p_e (n_y . w_{y,0}) / |y - x0|^2), visibility y - x from the VPL's shadow cube;
 //   j = 2 (bundle): x_j = the first surface along d = +-omega_k from x in bundle k (area density
 //     p_A2(y) = p_r (n_y . w_{y,x}) / |y - x|^2), lit by every light through its shadow cube.
 // Each term is I f_{0,j,x} f_{j,x,4} G / p_A with the path's geometry, and MIS weighs it by
-// p_A,j / (p_A1 + p_A2) (balance heuristic): the ratio equals EQUATIONS.md's p1/p2, both densities
+// p_A,j / (p_A1 + p_A2) (balance heuristic): the ratio equals p1/p2 of [TO12 Eq. 6], both densities
 // of the same vertex in the same (area) measure. The mean over the K pairs is one sample of the
 // indirect1 layer; direct light comes from the lights' shadow cubes as in `raster`. With
 // bounces = 2 pair k also gives the two-bounce path x0 -> VPL k -> bundle k's hit -> x (Eq. 7-8,

@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Mode multibounce, one camera path per pixel through K resident omnidirectional bundles ([TO12]
-// section 7, EQUATIONS.md section 3). From the G-buffer's visible point, each bounce picks a stored
+// Mode multibounce, one camera path per pixel through K resident omnidirectional bundles ([TO12 §7],
+// papers/EQUATIONS.md). From the G-buffer's visible point, each bounce picks a stored
 // bundle k uniformly (random directions: among those the path has not just used), takes d = omega_k or -omega_k (the
 // one on the shading normal's side: density p_r(d) = 1 / (2 pi) on that hemisphere for uniform
 // directions), finds the point's place in its bundle pixel and the next fragment along d in the
