@@ -32,12 +32,15 @@ public:
 
 protected:
     // Binds the pipeline and `sets` as sets 0, 1, ...; pushes `bytes` (none when pushBytes is 0).
+    // Sets given must be all of the layout's (none: those bound before stay, for shaders that read
+    // no descriptor); a different count is a programming error and throws.
     void bind(VkCommandBuffer cmd, std::span<const VkDescriptorSet> sets, const void* bytes) const;
 
 private:
     vk::PipelineLayout mLayout;
     vk::Pipeline mPipeline;
     std::uint32_t mPushBytes = 0;
+    std::uint32_t mSetCount = 0;
 };
 
 template <typename Push>

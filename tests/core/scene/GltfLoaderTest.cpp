@@ -90,6 +90,19 @@ TEST(GltfLoader, NodeTransformsComposeParentFirst) {
     EXPECT_TRUE(noted(s, "dielectric -> Lambert"));
 }
 
+// Translation, rotation and scale of one node apply as T * R * S (scale first): the triangle scaled
+// by (2, 3, 1), turned 90 degrees about +z (x -> y, y -> -x), moved by (10, 0, 0). T * S * R would
+// put (1, 0, 0) at (10, 3, 0) instead of (10, 2, 0).
+TEST(GltfLoader, NodeTranslationRotationScaleApplyScaleFirst) {
+    const Scene s = loadScene(triangleFile("trs.gltf", std::string(kTriangleMesh) + R"(,
+        "materials": [{}], "scenes": [{"nodes": [0]}],
+        "nodes": [{"translation": [10, 0, 0], "rotation": [0, 0, 0.70710678, 0.70710678], "scale": [2, 3, 1], "mesh": 0}])"));
+    const Mesh& m = s.meshes.at(0);
+    EXPECT_TRUE(near(m.positions[0], {10, 0, 0}));
+    EXPECT_TRUE(near(m.positions[1], {10, 2, 0}));
+    EXPECT_TRUE(near(m.positions[2], {7, 0, 0}));
+}
+
 // A mirroring transform (scale -1 in x) turns the winding back, so the front face is where the
 // (mirrored) normal points, as glTF says; without it the triangle would face away from its normal.
 TEST(GltfLoader, MirroringTransformKeepsTheFrontFace) {
