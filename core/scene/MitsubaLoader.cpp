@@ -108,9 +108,16 @@ private:
             mXml.note("bsdf 'diffuse' (one-sided in Mitsuba) read as bundlelab's Lambertian, which reflects on both sides");
         }
         const std::string type = inner.node.attribute("type").value();
+        if (type == "roughplastic") {
+            roughPlastic(inner, m);
+            const auto index = static_cast<std::uint32_t>(mScene.materials.size());
+            mScene.materials.push_back(m);
+            mMaterialOf.emplace(key, index);
+            return index;
+        }
         if (type != "diffuse") {
-            XmlReader::fail(inner, "bsdf type not supported (supported: diffuse, twosided around a diffuse); glossy bsdfs are "
-                        "not mapped to bundlelab's Phong / Ashikhmin-Shirley yet");
+            XmlReader::fail(inner, "bsdf type not supported (supported: diffuse, roughplastic, twosided around either); "
+                        "smooth (delta) bsdfs and conductors are not mapped to bundlelab's Lambert + Phong");
         }
         auto props = mXml.properties(inner, {"reflectance"});
         for (const pugi::xml_node& c : inner.node.children("ref")) {
@@ -136,6 +143,80 @@ private:
         mScene.materials.push_back(m);
         mMaterialOf.emplace(key, index);
         return index;
+    }
+
+    // Mitsuba's roughplastic (a rough dielectric coating over a diffuse base) as Lambert + Phong, its
+    // Fresnel factors held at normal incidence:
+    //   Phong lobe: reflectance specular_reflectance x F0, F0 = ((eta - 1) / (eta + 1))^2, eta =
+    //     int_ior / ext_ior; exponent (2 / alpha^2 - 2) / 4 (Beckmann's alpha matches the half-vector
+    //     exponent 2 / alpha^2 - 2; bundlelab's Phong lobe is about the mirror direction, at twice the
+    //     angle: a quarter), at most 1e6;
+    //   Lambert: diffuse_reflectance x (1 - F0)^2 / (eta^2 (1 - F_int)), Mitsuba's linear form (its
+    //     `nonlinear = false` default) with the transmittances in and out at normal incidence and F_int
+    //     the interface's internal reflectance averaged over the cosine-weighted hemisphere (smooth
+    //     interface, total internal reflection included).
+    // What this leaves out is stated in the notes: Fresnel's rise toward grazing angles (the coating
+    // reflects more and transmits less there), and the GGX distribution's longer tails.
+    void roughPlastic(const Element& e, Material& m) {
+        const auto props = mXml.properties(e, {"diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "alpha",
+                                               "distribution", "nonlinear", "sample_visible"});
+        const auto number = [&](const char* name, double fallback) {
+            return props.count(name) ? mXml.number(props.at(name), "value") : fallback;
+        };
+        const glm::dvec3 diffuse = props.count("diffuse_reflectance") ? glm::dvec3(mXml.color(props.at("diffuse_reflectance")))
+                                                                      : glm::dvec3(0.5);
+        const glm::dvec3 specular = props.count("specular_reflectance") ? glm::dvec3(mXml.color(props.at("specular_reflectance")))
+                                                                        : glm::dvec3(1.0);
+        const double eta = number("int_ior", 1.49) / number("ext_ior", 1.000277);
+        const double alpha = number("alpha", 0.1);
+        if (!(eta > 1.0 && std::isfinite(eta))) XmlReader::fail(e, "int_ior / ext_ior = " + formatNumber(eta) + " (a coating needs it above 1)");
+        if (!(alpha > 0.0 && alpha <= 1.0)) XmlReader::fail(e, "alpha " + formatNumber(alpha) + " outside (0, 1]");
+        if (props.count("nonlinear") && mXml.attribute(props.at("nonlinear"), "value") == "true") {
+            XmlReader::fail(e, "nonlinear = true is not supported (Mitsuba's linear default is)");
+        }
+        const std::string distribution = props.count("distribution") ? mXml.attribute(props.at("distribution"), "value") : "beckmann";
+        const double f0 = (eta - 1.0) * (eta - 1.0) / ((eta + 1.0) * (eta + 1.0));
+        const double fInternal = internalReflectance(eta);
+        const double exponent = std::min((2.0 / (alpha * alpha) - 2.0) / 4.0, 1e6);
+        if (exponent < 1.0) XmlReader::fail(e, "alpha " + formatNumber(alpha) + " is wider than a Phong exponent of 1");
+        m.albedo = glm::vec3(diffuse * ((1.0 - f0) * (1.0 - f0) / (eta * eta * (1.0 - fInternal))));
+        m.specular = glm::vec3(specular * f0);
+        m.exponentU = m.exponentV = float(exponent);
+        for (int c = 0; c < 3; ++c) {
+            if (!(m.albedo[c] + m.specular[c] <= 1.0f)) XmlReader::fail(e, "the mapped reflectances sum above 1");
+        }
+        char text[256];
+        std::snprintf(text, sizeof(text),
+                      "roughplastic '%s' (eta %.4g, alpha %.4g, %s): Lambert of diffuse_reflectance x %.4g + Phong lobe of "
+                      "specular_reflectance x F0 = %.4g, exponent %.6g",
+                      m.name.c_str(), eta, alpha, distribution.c_str(),
+                      (1.0 - f0) * (1.0 - f0) / (eta * eta * (1.0 - fInternal)), f0, exponent);
+        mXml.note(text);
+        mXml.note("roughplastic: Fresnel held at normal incidence (the coating's reflection rises toward grazing angles in "
+                  "Mitsuba, not here), the microfacet lobe as Phong about the mirror direction" +
+                  std::string(distribution == "ggx" ? " (GGX's longer tails cut)" : ""));
+    }
+
+    // The average reflectance of a smooth dielectric interface for light from inside (relative index
+    // 1 / eta), cosine-weighted over the hemisphere: 2 int_0^1 F(mu) mu dmu, total internal reflection
+    // (F = 1) beyond the critical angle. Midpoint rule on 4096 steps in mu (F is smooth but for the
+    // kink at the critical angle, which costs O(1 / steps)).
+    static double internalReflectance(double eta) {
+        constexpr int kSteps = 4096;
+        double sum = 0.0;
+        for (int i = 0; i < kSteps; ++i) {
+            const double mu = (i + 0.5) / kSteps;                   // cosine inside
+            const double sinT2 = eta * eta * (1.0 - mu * mu);        // Snell, out of the denser medium
+            double f = 1.0;
+            if (sinT2 < 1.0) {
+                const double cosT = std::sqrt(1.0 - sinT2);
+                const double rs = (eta * mu - cosT) / (eta * mu + cosT);
+                const double rp = (mu - eta * cosT) / (mu + eta * cosT);
+                f = 0.5 * (rs * rs + rp * rp);
+            }
+            sum += f * mu;
+        }
+        return 2.0 * sum / kSteps;
     }
 
     // A bitmap texture (8-bit, sRGB-encoded as Mitsuba reads one unless `raw`; bilinear, repeat),

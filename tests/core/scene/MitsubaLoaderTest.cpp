@@ -232,6 +232,49 @@ TEST(MitsubaLoader, SilentDifferencesFromMitsubaAreAvoided) {
 
 // What is not supported is refused with the file, the line and what is supported; never a
 // silently different scene.
+// roughplastic as Lambert + Phong with its Fresnel factors at normal incidence: int_ior 1.5 over
+// ext_ior 1 gives F0 = 0.04 as the lobe's reflectance, the diffuse base times (1 - F0)^2 / (eta^2
+// (1 - F_int)) with F_int = 0.5967 by Egan and Hilgeman's fit (-1.440/eta^2 + 0.710/eta + 0.668 +
+// 0.0636 eta, within 0.1% of the integral; the loader integrates it), and alpha 0.1 the mirror-
+// direction exponent (2 / 0.01 - 2) / 4 = 49.5; the approximation is said in the notes.
+TEST(MitsubaLoader, RoughPlasticMapsToLambertAndPhong) {
+    const Scene s = loadScene(scene(R"(<shape type="rectangle"><bsdf type="roughplastic">
+            <rgb name="diffuse_reflectance" value="0.5, 0.25, 0.1"/><float name="int_ior" value="1.5"/>
+            <float name="ext_ior" value="1"/><float name="alpha" value="0.1"/></bsdf></shape>)"));
+    const Material& m = s.materials.at(s.meshes.at(0).material);
+    const double eta = 1.5, fInternal = -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta;
+    const double factor = (1.0 - 0.04) * (1.0 - 0.04) / (eta * eta * (1.0 - fInternal));
+    EXPECT_NEAR(m.albedo.x, 0.5 * factor, 0.002 * 0.5 * factor);
+    EXPECT_NEAR(m.albedo.z, 0.1 * factor, 0.002 * 0.1 * factor);
+    EXPECT_TRUE(near(m.specular, glm::vec3(0.04f), 1e-6f));
+    EXPECT_FLOAT_EQ(m.exponentU, 49.5f);
+    EXPECT_FLOAT_EQ(m.exponentV, 49.5f);
+    EXPECT_TRUE(std::any_of(s.importNotes.begin(), s.importNotes.end(),
+                            [](const std::string& n) { return n.find("Fresnel held at normal incidence") != std::string::npos; }));
+    const std::string e = errorOf([] {
+        loadScene(scene(R"(<shape type="rectangle"><bsdf type="roughplastic"><boolean name="nonlinear" value="true"/></bsdf></shape>)",
+                        "nonlinear.xml"));
+    });
+    EXPECT_NE(e.find("nonlinear = true is not supported"), std::string::npos) << e;
+}
+
+// Veach's multiple importance sampling scene (Mitsuba's, ../shared): its four roughplastic plates
+// (alpha 0.005, 0.02, 0.05, 0.1) load as Phong lobes of exponent 19999.5, 1249.5, 199.5, 49.5.
+TEST(MitsubaLoader, VeachMisPlatesLoadAsPhongLobes) {
+    BL_SKIP_WITHOUT_SHARED("data/glossy/veach-mis/veach_mis.xml");
+    const Scene s = loadScene(bl::test::sharedPath("data/glossy/veach-mis/veach_mis.xml"));
+    std::vector<float> exponents;
+    for (const Material& m : s.materials) {
+        if (m.glossy()) exponents.push_back(m.exponentU);
+    }
+    std::sort(exponents.begin(), exponents.end());
+    ASSERT_EQ(exponents.size(), 4u);
+    EXPECT_FLOAT_EQ(exponents[0], 49.5f);
+    EXPECT_FLOAT_EQ(exponents[1], 199.5f);
+    EXPECT_FLOAT_EQ(exponents[2], 1249.5f);
+    EXPECT_FLOAT_EQ(exponents[3], 19999.5f);
+}
+
 TEST(MitsubaLoader, UnsupportedElementsAreErrorsWithFileAndLine) {
     const auto refusal = [](const std::string& body) { return errorOf([&] { loadScene(scene(body, "bad.xml")); }); };
     // The body starts on line 9 of the file (after <scene>, the default and the 6-line sensor).
