@@ -30,7 +30,7 @@ std::unique_ptr<Mode> RasterMode::create(const Settings& settings) {
     return std::make_unique<RasterMode>(settings);
 }
 
-RasterMode::RasterMode(const Settings& settings) : mSettings(settings) {}
+RasterMode::RasterMode(const Settings& settings) : mSettings(settings), mOptions(rasterOptions(settings)) {}
 
 struct RasterMode::Gpu {
     std::unique_ptr<gpu::GpuScene> scene;
@@ -57,12 +57,12 @@ std::vector<PlannedPass> RasterMode::plan(const Scene& scene) const {
                               (f.animated ? "every iteration (animated scene)" : "once (static scene)")});
     }
     passes.push_back({"gbuffer", true, std::to_string(f.triangles) + " triangles"});
-    const auto points = mSettings.getInt(kEmitterPoints);
+    const std::uint32_t points = mOptions.emitterPoints;
     const bool areaLight = f.emissiveMeshes && points > 0;
     if (areaLight) {
         passes.push_back({"emitter points", true,
                           std::to_string(points) + " point(s) on the emitters per iteration, by power, x 6 faces of " +
-                              std::to_string(mSettings.getInt(kEmitterShadowResolution)) + "^2"});
+                              std::to_string(mOptions.emitterShadowResolution) + "^2"});
     }
     std::string shading = f.shadowCastingLights() ? "direct light" : "";
     auto add = [&shading](const std::string& s) { shading += (shading.empty() ? "" : ", ") + s; };
@@ -95,10 +95,10 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
 
     // G-buffer, accumulation, shadow cubes (r32f) + their depth.
     const VkDeviceSize pixels = VkDeviceSize(width) * height;
-    const VkDeviceSize shadowSide = static_cast<VkDeviceSize>(mSettings.getInt(kShadowResolution));
+    const VkDeviceSize shadowSide = mOptions.shadowResolution;
     const VkDeviceSize lights = scene.lights.size();
-    const auto points = static_cast<std::uint32_t>(mSettings.getInt(kEmitterPoints));
-    const auto pointSide = static_cast<std::uint32_t>(mSettings.getInt(kEmitterShadowResolution));
+    const std::uint32_t points = mOptions.emitterPoints;
+    const std::uint32_t pointSide = mOptions.emitterShadowResolution;
     ctx->requireDeviceMemory(pixels * gpu::CameraPass::bytesPerPixel(shader::kRasterAccumLayers) +
                                  shadowSide * shadowSide * 4 * (6 * lights + 1) +
                                  (scene.features().emissiveMeshes ? gpu::EmitterPointPass::bytesFor(points, pointSide) : 0),
@@ -107,8 +107,7 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     auto g = std::make_unique<Gpu>();
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
     g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kRasterAccumLayers);
-    g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene,
-                                                       static_cast<std::uint32_t>(mSettings.getInt(kShadowResolution)));
+    g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, mOptions.shadowResolution);
     g->emitterPoints = std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene, points, pointSide);
     g->timer = vk::GpuTimer(*ctx);
 
@@ -137,7 +136,7 @@ void RasterMode::iterate(const IterationInfo& info) {
     Gpu& g = sceneState(mGpu, name(), "iterate");
     const std::uint32_t width = g.camera->width();
     const std::uint32_t height = g.camera->height();
-    const gpu::CameraSample sample = g.camera->sample(mIterations, mSettings.getBool(kJitter), info.time, info.seed);
+    const gpu::CameraSample sample = g.camera->sample(mIterations, mOptions.jitter, info.time, info.seed);
     const bool renderShadows = g.shadows->refreshFor(*mContext, *g.scene, info.time);
     g.emitterPoints->prepare(info.seed, mIterations, info.time);
 

@@ -25,6 +25,7 @@
 #include "gpu/EmitterPointPass.h"
 #include "gpu/ShadowCubePass.h"
 #include "modes/Mode.h"
+#include "modes/raster/RasterOptions.h"
 
 #include <memory>
 #include <optional>
@@ -56,6 +57,7 @@ public:
 private:
     struct Gpu;
     Settings mSettings;
+    RasterOptions mOptions; // mSettings, typed, read once
     const Scene* mScene = nullptr;
     vk::Context* mContext = nullptr;
     std::unique_ptr<Gpu> mGpu;
