@@ -175,6 +175,23 @@ private:
         return mModel.accessors[std::size_t(index)];
     }
 
+    // A primitive's vertex attribute `name` (none when absent), each element's components: of
+    // accessor type `type`, and `count` elements where count > 0 (the vertices POSITION gave).
+    std::vector<std::vector<double>> vertexAttribute(const tinygltf::Primitive& prim, const std::string& name, int type,
+                                                     std::size_t count, const std::string& what) const {
+        const auto it = prim.attributes.find(name);
+        if (it == prim.attributes.end()) return {};
+        const std::string label = what + " " + name;
+        const tinygltf::Accessor& a = accessor(it->second, label);
+        if (a.type != type) fail(label + ": accessor type " + std::to_string(a.type) + ", " + std::to_string(type) + " expected");
+        if (count > 0 && a.count != count) {
+            fail(label + " has " + std::to_string(a.count) + " elements, POSITION " + std::to_string(count));
+        }
+        std::vector<std::vector<double>> out;
+        for (std::size_t i = 0; i < a.count; ++i) out.push_back(read(a, i, label));
+        return out;
+    }
+
     void mesh(int index, const glm::dmat4& world, const std::string& where) {
         if (index >= int(mModel.meshes.size())) fail(where + ": mesh " + std::to_string(index) + " does not exist");
         const tinygltf::Mesh& gm = mModel.meshes[std::size_t(index)];
@@ -186,8 +203,7 @@ private:
                 fail(what + ": mode " + std::to_string(prim.mode) + " is not supported (triangles only, mode 4)");
             }
             if (!prim.targets.empty()) note("morph targets ignored: meshes in their base shape");
-            const auto position = prim.attributes.find("POSITION");
-            if (position == prim.attributes.end()) fail(what + ": no POSITION attribute");
+            if (!prim.attributes.count("POSITION")) fail(what + ": no POSITION attribute");
             for (const auto& [name, unused] : prim.attributes) {
                 if (name == "TEXCOORD_1" || name == "COLOR_0" || name == "TANGENT" || name.rfind("JOINTS", 0) == 0 ||
                     name.rfind("WEIGHTS", 0) == 0) {
@@ -197,29 +213,15 @@ private:
             Mesh m;
             m.name = mPath + ":" + (gm.name.empty() ? "mesh" + std::to_string(index) : gm.name) + "." + std::to_string(pi);
             m.sourceFile = mPath;
-            const tinygltf::Accessor& pa = accessor(position->second, what + " POSITION");
-            if (pa.type != TINYGLTF_TYPE_VEC3) fail(what + ": POSITION is not a VEC3");
-            for (std::size_t i = 0; i < pa.count; ++i) {
-                const std::vector<double> v = read(pa, i, what + " POSITION");
+            for (const std::vector<double>& v : vertexAttribute(prim, "POSITION", TINYGLTF_TYPE_VEC3, 0, what)) {
                 m.positions.emplace_back(float(v[0]), float(v[1]), float(v[2]));
             }
-            if (const auto normal = prim.attributes.find("NORMAL"); normal != prim.attributes.end()) {
-                const tinygltf::Accessor& na = accessor(normal->second, what + " NORMAL");
-                if (na.type != TINYGLTF_TYPE_VEC3) fail(what + ": NORMAL is not a VEC3");
-                if (na.count != pa.count) fail(what + ": NORMAL has " + std::to_string(na.count) + " elements, POSITION " + std::to_string(pa.count));
-                for (std::size_t i = 0; i < na.count; ++i) {
-                    const std::vector<double> v = read(na, i, what + " NORMAL");
-                    m.normals.emplace_back(float(v[0]), float(v[1]), float(v[2]));
-                }
+            const std::size_t vertices = m.positions.size();
+            for (const std::vector<double>& v : vertexAttribute(prim, "NORMAL", TINYGLTF_TYPE_VEC3, vertices, what)) {
+                m.normals.emplace_back(float(v[0]), float(v[1]), float(v[2]));
             }
-            if (const auto uv = prim.attributes.find("TEXCOORD_0"); uv != prim.attributes.end()) {
-                const tinygltf::Accessor& ua = accessor(uv->second, what + " TEXCOORD_0");
-                if (ua.type != TINYGLTF_TYPE_VEC2) fail(what + ": TEXCOORD_0 is not a VEC2");
-                if (ua.count != pa.count) fail(what + ": TEXCOORD_0 has " + std::to_string(ua.count) + " elements, POSITION " + std::to_string(pa.count));
-                for (std::size_t i = 0; i < ua.count; ++i) {
-                    const std::vector<double> v = read(ua, i, what + " TEXCOORD_0");
-                    m.uvs.emplace_back(float(v[0]), float(1.0 - v[1])); // glTF's v runs down the image, ours up
-                }
+            for (const std::vector<double>& v : vertexAttribute(prim, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, vertices, what)) {
+                m.uvs.emplace_back(float(v[0]), float(1.0 - v[1])); // glTF's v runs down the image, ours up
             }
             std::vector<std::uint32_t> indices;
             if (prim.indices >= 0) {
@@ -227,11 +229,11 @@ private:
                 if (ia.type != TINYGLTF_TYPE_SCALAR) fail(what + ": indices are not SCALAR");
                 for (std::size_t i = 0; i < ia.count; ++i) {
                     const double v = read(ia, i, what + " indices")[0];
-                    if (!(v >= 0.0 && v < double(pa.count))) fail(what + ": index " + formatNumber(v) + " beyond its " + std::to_string(pa.count) + " vertices");
+                    if (!(v >= 0.0 && v < double(vertices))) fail(what + ": index " + formatNumber(v) + " beyond its " + std::to_string(vertices) + " vertices");
                     indices.push_back(std::uint32_t(v));
                 }
             } else {
-                for (std::size_t i = 0; i < pa.count; ++i) indices.push_back(std::uint32_t(i));
+                for (std::size_t i = 0; i < vertices; ++i) indices.push_back(std::uint32_t(i));
             }
             if (indices.size() % 3 != 0) fail(what + ": " + std::to_string(indices.size()) + " indices, not a multiple of 3");
             for (std::size_t i = 0; i + 2 < indices.size(); i += 3) {
