@@ -14,6 +14,8 @@ packages=(
     libembree-dev libtbb-dev
     # The Python module (pybind11) and its tests
     pybind11-dev python3-dev python3-pytest
+    # `bundlelab run --slurm`: a single-node Slurm cluster the runner's test starts (scripts/local-slurm.sh)
+    slurmctld slurmd slurm-client munge
     # Tests, benchmarks, plots, and headless Chromium for the report's browser test
     libgtest-dev libgmock-dev libbenchmark-dev python3-matplotlib python3-numpy chromium
 )

@@ -40,9 +40,29 @@ void writeResultsIndex(const ExperimentConfig& config, const TaskRunner& runner,
 
 } // namespace
 
+std::string resultsDirectory(const ExperimentConfig& config, const RunOptions& options) {
+    return options.outDir.empty() ? (fs::path("results") / config.name).string() : options.outDir;
+}
+
+std::vector<UnfinishedTask> collectResults(const ExperimentConfig& config, const std::string& outDir) {
+    ReferenceCache noReferences(config, outDir);
+    TaskRunner runner(config, noReferences, outDir);
+    writeResultsIndex(config, runner, outDir);
+    std::vector<UnfinishedTask> unfinished;
+    for (const Task& t : config.tasks) {
+        if (runner.finished(t)) continue;
+        UnfinishedTask u{t.index, t.id, ""};
+        if (readFileIfExists((fs::path(runner.directory(t)) / "error.txt").string(), u.error)) {
+            u.error = u.error.substr(0, u.error.find('\n'));
+        }
+        unfinished.push_back(u);
+    }
+    return unfinished;
+}
+
 int runExperiment(const std::string& configPath, const RunOptions& options) {
     ExperimentConfig config = loadExperimentConfig(configPath);
-    const std::string outDir = options.outDir.empty() ? (fs::path("results") / config.name).string() : options.outDir;
+    const std::string outDir = resultsDirectory(config, options);
     fs::create_directories(outDir);
     std::string text;
     readFileIfExists(configPath, text);
@@ -62,6 +82,12 @@ int runExperiment(const std::string& configPath, const RunOptions& options) {
     }
     log::info(config.name + ": " + std::to_string(config.tasks.size()) + " tasks, " + std::to_string(mine.size()) +
               " in this slice, " + std::to_string(mine.size() - pending.size()) + " already finished");
+    if (options.referencesOnly) {
+        // A cluster's reference job: every reference of the slice, once, before the array starts.
+        std::vector<const Task*> all(mine.begin(), mine.end());
+        references.prepare(all);
+        return 0;
+    }
     if (!pending.empty()) {
         references.prepare(pending);
     }

@@ -16,7 +16,10 @@ void writeFileAtomic(const std::string& path, const std::string& content) {
     if (p.has_parent_path()) {
         fs::create_directories(p.parent_path());
     }
-    const std::string tmp = path + ".tmp" + std::to_string(::getpid());
+    // Host and process in the name: array elements on several nodes may share the directory.
+    char host[256] = {};
+    ::gethostname(host, sizeof(host) - 1);
+    const std::string tmp = path + ".tmp-" + host + "-" + std::to_string(::getpid());
     {
         std::ofstream out(tmp, std::ios::binary);
         out << content;

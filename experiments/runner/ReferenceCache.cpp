@@ -9,6 +9,7 @@
 #include "scene/SceneLoader.h"
 
 #include <filesystem>
+#include <map>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -57,6 +58,29 @@ void ReferenceCache::prepare(const std::vector<const Task*>& tasks) {
     }
 }
 
+std::string ReferenceCache::cachePath(const SceneEntry& s,
+                                      const std::vector<std::pair<std::string, ParamValue>>& settingsList) const {
+    std::string identity = s.fingerprint + "|" + std::to_string(mConfig->reference.spp);
+    for (const auto& [k, v] : settingsList) identity += "|" + k + "=" + formatValue(v);
+    return (fs::path(mOutDir) / "references" / (s.name + "-" + hashText(identity) + ".exr")).string();
+}
+
+std::size_t ReferenceCache::toRender(const std::vector<const Task*>& tasks) const {
+    if (!mConfig->reference.enabled) {
+        return 0;
+    }
+    std::map<std::string, bool> missing;
+    for (const Task* t : tasks) {
+        const SceneEntry& s = mConfig->scene(t->scene);
+        if (!s.referenceFile.empty()) continue;
+        const std::string exr = cachePath(s, t->referenceSettings);
+        missing[exr] = !fs::is_regular_file(exr) || !fs::is_regular_file(fs::path(exr).replace_extension(".json"));
+    }
+    std::size_t n = 0;
+    for (const auto& [path, m] : missing) n += m ? 1 : 0;
+    return n;
+}
+
 ReferenceImage ReferenceCache::make(const SceneEntry& s,
                                     const std::vector<std::pair<std::string, ParamValue>>& settingsList) const {
     ReferenceImage ref;
@@ -65,10 +89,7 @@ ReferenceImage ReferenceCache::make(const SceneEntry& s,
         ref.path = s.referenceFile;
         return ref;
     }
-    std::string identity = s.fingerprint + "|" + std::to_string(mConfig->reference.spp);
-    for (const auto& [k, v] : settingsList) identity += "|" + k + "=" + formatValue(v);
-    const std::string hash = hashText(identity);
-    const std::string exr = (fs::path(mOutDir) / "references" / (s.name + "-" + hash + ".exr")).string();
+    const std::string exr = cachePath(s, settingsList);
     const std::string json = fs::path(exr).replace_extension(".json").string();
     if (!fs::is_regular_file(exr) || !fs::is_regular_file(json)) {
         log::info("reference for scene '" + s.name + "': rendering " + std::to_string(mConfig->reference.spp) +

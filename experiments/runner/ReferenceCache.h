@@ -27,9 +27,13 @@ public:
     // Renders (or loads from the cache) every reference the given tasks are judged against.
     void prepare(const std::vector<const Task*>& tasks);
     const ReferenceImage* find(const Task& task) const;
+    // How many distinct references the given tasks need that are neither given files nor cached
+    // yet (what prepare() would render).
+    std::size_t toRender(const std::vector<const Task*>& tasks) const;
 
 private:
     std::string key(const Task& task) const;
+    std::string cachePath(const SceneEntry& scene, const std::vector<std::pair<std::string, ParamValue>>& settings) const;
     ReferenceImage make(const SceneEntry& scene, const std::vector<std::pair<std::string, ParamValue>>& settings) const;
 
     const ExperimentConfig* mConfig;
