@@ -18,6 +18,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -39,6 +40,33 @@ void writeResultsIndex(const ExperimentConfig& config, const TaskRunner& runner,
 }
 
 } // namespace
+
+void writeRunEnvironment(const ExperimentConfig& config, const std::string& configPath, const std::string& device,
+                         int jobs, const std::string& outDir) {
+    const RunEnvironment env = currentRunEnvironment();
+    std::ostringstream e;
+    JsonWriter w(e);
+    w.beginObject().field("experiment", config.name).field("config", configPath).field("device", device);
+    w.field("cpu", env.cpu).field("hardware_threads", env.hardwareThreads).field("build_type", env.buildType);
+    w.field("git_revision", env.gitRevision).field("version", env.version).field("jobs", jobs).endObject();
+    writeFileAtomic((fs::path(outDir) / "environment.json").string(), e.str() + "\n");
+}
+
+std::string devicesOfTasks(const ExperimentConfig& config, const std::string& outDir) {
+    std::set<std::string> devices;
+    for (const Task& t : config.tasks) {
+        std::string text;
+        if (!readFileIfExists((fs::path(outDir) / "tasks" / t.id / "environment.json").string(), text)) continue;
+        const std::string key = "\"device\": \"";
+        const auto start = text.find(key);
+        if (start == std::string::npos) continue;
+        const auto end = text.find('"', start + key.size());
+        if (end != std::string::npos && end > start + key.size()) devices.insert(text.substr(start + key.size(), end - start - key.size()));
+    }
+    std::string all;
+    for (const std::string& d : devices) all += (all.empty() ? "" : "; ") + d;
+    return all;
+}
 
 std::string resultsDirectory(const ExperimentConfig& config, const RunOptions& options) {
     return options.outDir.empty() ? (fs::path("results") / config.name).string() : options.outDir;
@@ -101,15 +129,7 @@ int runExperiment(const std::string& configPath, const RunOptions& options) {
             log::info("device: " + device);
         }
     }
-    {
-        const RunEnvironment env = currentRunEnvironment();
-        std::ostringstream e;
-        JsonWriter w(e);
-        w.beginObject().field("experiment", config.name).field("config", configPath).field("device", device);
-        w.field("cpu", env.cpu).field("hardware_threads", env.hardwareThreads).field("build_type", env.buildType);
-        w.field("git_revision", env.gitRevision).field("version", env.version).field("jobs", options.jobs).endObject();
-        writeFileAtomic((fs::path(outDir) / "environment.json").string(), e.str() + "\n");
-    }
+    writeRunEnvironment(config, configPath, device, options.jobs, outDir);
 
     Progress progress(pending.size());
     std::mutex gpuMutex, queueMutex;

@@ -35,6 +35,13 @@ struct UnfinishedTask {
     std::string error;
 };
 
+// DIR/environment.json: the machine and build a run's report names, and its GPU device ("" for none).
+void writeRunEnvironment(const ExperimentConfig& config, const std::string& configPath, const std::string& device,
+                         int jobs, const std::string& outDir);
+// The devices the finished tasks of DIR ran on (their environment.json), distinct, "; "-separated:
+// a run split into slices or array elements names them all, as a local run names its one.
+std::string devicesOfTasks(const ExperimentConfig& config, const std::string& outDir);
+
 // Rewrites DIR/results.csv from every finished task (in task order, whoever ran them: a local
 // pool, slices, array tasks) and returns the tasks still unfinished.
 std::vector<UnfinishedTask> collectResults(const ExperimentConfig& config, const std::string& outDir);

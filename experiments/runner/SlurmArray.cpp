@@ -222,6 +222,9 @@ int collectSlurmArray(const std::string& configPath, const RunOptions& run) {
         throw Error(p.outDir + ": no results directory (run the config first)");
     }
     const std::vector<UnfinishedTask> unfinished = collectResults(config, p.outDir);
+    // Each element wrote environment.json with its own device (none for a CPU task): the merged
+    // run names every device its tasks used, as a local run does.
+    writeRunEnvironment(config, configPath, devicesOfTasks(config, p.outDir), 1, p.outDir);
     const bool submitted = fs::is_regular_file(fs::path(p.slurmDir) / "submissions.tsv");
     std::vector<std::string> queued;
     if (submitted) {

@@ -3,7 +3,8 @@
 # cluster (scripts/local-slurm.sh: Debian's slurmctld, slurmd and munge, started here, no mock).
 # The array runs, a second submission is refused while it is queued, one task is killed mid-run,
 # --collect lists exactly that task, the same command resubmits exactly that task, nothing
-# finished runs again, each reference is rendered once, and the merged results equal a local run's.
+# finished runs again, each reference is rendered once, and the merged results and report equal a
+# local run's (times aside).
 set -uo pipefail
 bl=$1
 out=$2/slurm
@@ -69,4 +70,8 @@ stamps | diff "$out/stamps-before.txt" - || fail "a finished task ran again"
 "$bl" run "$config" --out "$out/local" >"$out/local.txt" 2>&1 || { cat "$out/local.txt"; fail "local run"; }
 content() { cut -d, -f1-8,12-21 "$1/results.csv"; }
 diff <(content "$out/local") <(content "$results") || fail "the array's results differ from the local run's"
+# And so do the reports, times masked (wall, time to relMSE, relMSE at equal time, speed-up).
+for d in "$out/local" "$results"; do "$bl" report "$d" >"$d.report.txt" 2>&1 || { cat "$d.report.txt"; fail "report of $d"; }; done
+untimed() { awk -F'|' 'NF > 10 { print $2 "|" $3 "|" $4 "|" $5 "|" $7 "|" $8; next } { print }' "$1/report.md"; }
+diff <(untimed "$out/local") <(untimed "$results") || fail "the array's report differs from the local run's"
 echo "PASS"
