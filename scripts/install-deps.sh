@@ -16,6 +16,9 @@ packages=(
     pybind11-dev python3-dev python3-pytest
     # `bundlelab run --slurm`: a single-node Slurm cluster the runner's test starts (scripts/local-slurm.sh)
     slurmctld slurmd slurm-client munge
+    # glTF files written by real exporters for the importer's tests: the Khronos sample models and
+    # assimp's own glTF 2.0 exporter
+    assimp-testmodels assimp-utils
     # Tests, benchmarks, plots, and headless Chromium for the report's browser test
     libgtest-dev libgmock-dev libbenchmark-dev python3-matplotlib python3-numpy chromium
 )

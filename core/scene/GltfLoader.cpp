@@ -14,6 +14,8 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <set>
@@ -37,18 +39,39 @@ std::string formatted(const char* format, double a, double b = 0.0, double c = 0
     return text;
 }
 
+// The names in a glTF file's top-level "extensionsRequired" array, read from its JSON text (the
+// .glb's first chunk) with plain string scanning: used only after tinygltf has refused the file,
+// because an extension it cannot decode (Draco, meshopt) makes it fail with an accessor error that
+// does not name the extension.
+std::vector<std::string> requiredExtensionsIn(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.size() >= 20 && text.compare(0, 4, "glTF") == 0) {
+        std::uint32_t jsonLength = 0;
+        std::memcpy(&jsonLength, text.data() + 12, 4);
+        text = text.substr(20, std::min<std::size_t>(jsonLength, text.size() - 20));
+    }
+    std::vector<std::string> names;
+    const auto key = text.find("\"extensionsRequired\"");
+    if (key == std::string::npos) return names;
+    const auto open = text.find('[', key), close = text.find(']', key);
+    if (open == std::string::npos || close == std::string::npos || close < open) return names;
+    for (auto q = text.find('"', open); q != std::string::npos && q < close;) {
+        const auto end = text.find('"', q + 1);
+        if (end == std::string::npos || end > close) break;
+        names.push_back(text.substr(q + 1, end - q - 1));
+        q = text.find('"', end + 1);
+    }
+    return names;
+}
+
 class Importer {
 public:
     explicit Importer(const std::string& path) : mPath(path) {}
 
     Scene run() {
         load();
-        for (const std::string& e : mModel.extensionsRequired) {
-            if (!kReadExtensions.count(e)) {
-                fail("requires extension " + e + ", which is not supported (read: KHR_lights_punctual, "
-                     "KHR_materials_emissive_strength)");
-            }
-        }
+        for (const std::string& e : mModel.extensionsRequired) refuseUnread(e);
         for (const std::string& e : mModel.extensionsUsed) {
             if (!kReadExtensions.count(e)) note("extension " + e + " (used, not required) ignored");
         }
@@ -98,7 +121,17 @@ private:
                                       : reader.LoadASCIIFromFile(&mModel, &error, &warning, mPath);
         if (!warning.empty()) note("tinygltf: " + warning);
         mWarning = warning;
-        if (!ok) fail(error.empty() ? std::string("not a readable glTF file") : error);
+        if (!ok) {
+            for (const std::string& e : requiredExtensionsIn(mPath)) refuseUnread(e);
+            fail(error.empty() ? std::string("not a readable glTF file") : error);
+        }
+    }
+
+    void refuseUnread(const std::string& extension) const {
+        if (!kReadExtensions.count(extension)) {
+            fail("requires extension " + extension + ", which is not supported (read: KHR_lights_punctual, "
+                 "KHR_materials_emissive_strength)");
+        }
     }
 
     bool isChild(int n) const {
@@ -188,7 +221,12 @@ private:
             fail(label + " has " + std::to_string(a.count) + " elements, POSITION " + std::to_string(count));
         }
         std::vector<std::vector<double>> out;
-        for (std::size_t i = 0; i < a.count; ++i) out.push_back(read(a, i, label));
+        for (std::size_t i = 0; i < a.count; ++i) {
+            out.push_back(read(a, i, label));
+            for (double v : out.back()) {
+                if (!std::isfinite(v)) fail(label + ": element " + std::to_string(i) + " is " + formatNumber(v) + " (not finite)");
+            }
+        }
         return out;
     }
 

@@ -192,9 +192,16 @@ private:
                       m.name.c_str(), eta, alpha, distribution.c_str(),
                       (1.0 - f0) * (1.0 - f0) / (eta * eta * (1.0 - fInternal)), f0, exponent);
         mXml.note(text);
+        // The error, measured by experiments/mitsuba/roughplastic-mapping.py on veach_mis.xml (eta 2,
+        // alpha 0.005-0.1): glossy albedo mapping / Mitsuba 1.00 at normal incidence, 0.85 at 30 deg,
+        // 0.34 at 60 deg, 0.09 at 75 deg (Phong's albedo falls as cos theta_i, the coating's Fresnel
+        // rises); diffuse base 1.06-1.08 at normal incidence, 1.36 at 75 deg; the lobe's half-energy
+        // cone equal within 1.5 %.
         mXml.note("roughplastic: Fresnel held at normal incidence (the coating's reflection rises toward grazing angles in "
                   "Mitsuba, not here), the microfacet lobe as Phong about the mirror direction" +
-                  std::string(distribution == "ggx" ? " (GGX's longer tails cut)" : ""));
+                  std::string(distribution == "ggx" ? " (GGX's longer tails cut)" : "") +
+                  "; measured for eta 2: glossy albedo x1.00 at normal incidence, x0.85 at 30 deg, x0.34 at 60 deg, "
+                  "diffuse base x1.07 at normal incidence, x1.36 at 75 deg (experiments/mitsuba/roughplastic-mapping.md)");
     }
 
     // The average reflectance of a smooth dielectric interface for light from inside (relative index

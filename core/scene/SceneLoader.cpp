@@ -509,6 +509,22 @@ Scene loadTomlScene(const std::string& path) {
     return scene;
 }
 
+// Something must light a file that brings no emitter at all (a bare mesh; a glTF model without
+// KHR_lights_punctual or emissive materials, as most are): a headlight giving unit irradiance at
+// the centre, and a white sky for the modes that use environment light. Said in the log.
+void lightIfUnlit(Scene& scene, const std::string& path) {
+    if (!scene.lights.empty() || scene.features().emissiveMeshes != 0 || scene.environment.present) return;
+    const Bounds b = scene.bounds();
+    Light head;
+    head.position = scene.camera.pose.position;
+    const float d = glm::length(scene.camera.pose.position - b.center());
+    head.intensity = glm::vec3(d * d);
+    scene.lights.push_back(head);
+    scene.environment.present = true;
+    scene.environment.radiance = glm::vec3(1.0f);
+    log::info(path + ": no emitters; added a headlight and a constant white environment");
+}
+
 Scene loadBareMesh(const std::string& path) {
     Scene scene;
     scene.path = path;
@@ -516,18 +532,7 @@ Scene loadBareMesh(const std::string& path) {
     requireTriangles(scene);
     Bounds b = scene.bounds();
     scene.camera = fitCamera(b, {kDefaultResolution, kDefaultResolution});
-    if (scene.features().emissiveMeshes == 0) {
-        // Something must light a bare mesh: a headlight giving unit irradiance at the centre, and
-        // a white sky for the modes that use environment light.
-        Light head;
-        head.position = scene.camera.pose.position;
-        float d = glm::length(scene.camera.pose.position - b.center());
-        head.intensity = glm::vec3(d * d);
-        scene.lights.push_back(head);
-        scene.environment.present = true;
-        scene.environment.radiance = glm::vec3(1.0f);
-        log::info(path + ": no emitters; added a headlight and a constant white environment");
-    }
+    lightIfUnlit(scene, path);
     return scene;
 }
 
@@ -543,6 +548,7 @@ Scene loadScene(const std::string& path) {
                   : ext == ".xml"                    ? loadMitsubaScene(path)
                   : ext == ".gltf" || ext == ".glb" ? loadGltfScene(path)
                                                      : loadBareMesh(path);
+    if (ext == ".gltf" || ext == ".glb") lightIfUnlit(scene, path);
     requireRepresentable(scene);
     if (recentreFarScene(scene)) {
         log::info(path + ": far from the origin; renderers work relative to its centre " + formatNumber(scene.origin.x) +
