@@ -73,7 +73,8 @@ void addPlanCommand(CLI::App& app, Action& action) {
             std::unique_ptr<Mode> mode = createMode(*modeName, *assignments);
             Scene scene = loadScene(*scenePath);
             for (const PlannedPass& p : mode->plan(scene)) {
-                std::cout << (p.runs ? "  run   " : "  skip  ") << p.name << ": " << p.reason << "\n";
+                std::cout << (p.runs ? "  run   " : "  skip  ") << p.name << ": " << p.reason << "  [" << p.id << ": " << p.code
+                          << "]\n";
             }
             // The same checks a render warns with, before any work (modes/SettingTrades.h).
             for (const std::string& w : settingTrades(*mode, scene)) std::cout << "  warn  " << w << "\n";

@@ -10,6 +10,7 @@
 #include "config/Settings.h"
 #include "image/Image.h"
 #include "modes/LostWork.h"
+#include "modes/PassPlan.h"
 
 #include <cstdint>
 #include <memory>
@@ -48,16 +49,6 @@ struct ImageSet {
     std::vector<std::string> notes;
 
     const Image& radiance() const { return layers.at(0).second; }
-};
-
-// One pass of a mode's plan and why it runs or is skipped for this scene.
-struct PlannedPass {
-    std::string name;
-    bool runs = true;
-    std::string reason;
-    // The scene has a light this mode leaves out of its image (an area light in raster, a point
-    // light in skylight): drivers warn at render time, not only in `bundlelab plan`.
-    bool lightLeftOut = false;
 };
 
 // The settings whose accuracy depends on the scene, for the checks of modes/SettingTrades.h
@@ -128,8 +119,9 @@ public:
     virtual ImageSet resolve() = 0;
     virtual const Settings& settings() const = 0;
     virtual PassTimes timings() const = 0;
-    // The passes this mode runs for the scene given to setScene (or would, before it).
-    virtual std::vector<PlannedPass> plan(const Scene& scene) const = 0;
+    // The passes this mode runs for the scene given to setScene (or would, before it): the same plan
+    // iterate() executes (modes/PassPlan.h).
+    virtual PassPlan plan(const Scene& scene) const = 0;
     // The settings modes/SettingTrades.h checks against the scene; none by default.
     virtual TradeSettings trades() const { return {}; }
 };

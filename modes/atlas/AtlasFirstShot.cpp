@@ -17,32 +17,40 @@ AtlasMode::FirstShotChoice AtlasMode::firstShotChoice(const Scene& scene) const 
     const SceneFeatures f = scene.features();
     FirstShotChoice c;
     if (!f.emissiveMeshes) {
+        c.code = "no-area-emitters";
         c.why = "no area emitters";
         return c;
     }
     const AtlasModeOptions& o = mOptions;
+    std::string conflictCode;
     if (o.bounce) {
         c.conflict = "transfer = bounce";
+        conflictCode = "transfer-bounce";
     } else if (o.delayIndirect != 0) {
         c.conflict = "delay_indirect = " + std::to_string(o.delayIndirect);
+        conflictCode = "delay-indirect";
     } else if (f.glossy && o.glossy != "off") {
         c.conflict = "glossy = " + o.glossy + " on glossy materials";
+        conflictCode = "glossy-transport";
     }
     if (o.firstShot == "off") {
+        c.code = "first-shot-off";
         c.why = "first_shot = off: the exchange carries the emitters' light";
     } else if (!c.conflict.empty()) {
+        c.code = conflictCode;
         c.why = o.firstShot == "on"
                     ? "first_shot = on with " + c.conflict + ": refused at set-up (first_shot = auto leaves the shot out)"
                     : "first_shot = auto, " + c.conflict + ": the exchange carries the emitters' light";
     } else {
         c.runs = true;
+        c.code = "area-emitters";
     }
     return c;
 }
 
 void AtlasMode::setUpFirstShot(const Scene& scene) {
     Gpu& g = *mGpu;
-    g.firstShot = firstShotChoice(scene).runs;
+    g.firstShot = mPlan.runs(kPassFirstShot);
     if (!g.firstShot) {
         return;
     }

@@ -83,6 +83,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     mTotalWeight = 0.0;
     mPass = 1;
     mTime = 0.0;
+    mPlan = plan(scene);
     if (!mOptions.bounce && mOptions.maxSegments != 0) {
         throw Error("atlas: max_segments needs transfer=bounce (interleaved transfer mixes path lengths in every "
                     "direction's sender)");
@@ -143,7 +144,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
                                         ? 0
                                         : shadowSide * shadowSide * 8 * 6 * scene.lights.size() +
                                               VkDeviceSize(g->texelCount) * (lightSamples * lightSamples * 32 + 4);
-    g->split = mOptions.delayIndirect > 0;
+    g->split = mPlan.runs(kPassDelayedIndirect);
     ctx->requireDeviceMemory(VkDeviceSize(g->texelCount) * (kBytesPerTexel + (g->split ? kSplitBytesPerTexel : 0)) +
                                  lightBytes +
                                  VkDeviceSize(width) * height *
@@ -241,8 +242,8 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     for (const Material& m : scene.materials) materials.push_back(toGpuMaterial(m));
     if (materials.empty()) materials.emplace_back();
     g->materials = vk::makeBuffer(*ctx, std::span<const shader::GpuMaterial>(materials), kStorage);
-    g->glossy = scene.features().glossy && !mOptions.bounce && mOptions.glossy != "off";
-    g->glossyTransfer = g->glossy && mOptions.glossy == "transfer";
+    g->glossy = mPlan.runs(kPassGlossyGather);
+    g->glossyTransfer = mPlan.runs(kPassGlossyTransfer);
     // The shuffled direction order only where a mesh carries a glossy lobe: with none hit, the
     // transfer adds nothing and the directions stay those of the diffuse mode.
     const auto glossyMesh = [&](const Mesh& m) {

@@ -152,6 +152,12 @@ public:
     static constexpr const char* kEmitterPoints = "emitter_points";
     static constexpr const char* kEmitterShadowResolution = "emitter_shadow_resolution";
 
+    // The ids of the plan's passes that setScene() and iterate() execute (AtlasPlan.cpp).
+    static constexpr const char* kPassFirstShot = "first-shot";
+    static constexpr const char* kPassDelayedIndirect = "delayed-indirect";
+    static constexpr const char* kPassGlossyTransfer = "glossy-transfer";
+    static constexpr const char* kPassGlossyGather = "glossy-gather";
+
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);
 
@@ -164,7 +170,7 @@ public:
     ImageSet resolve() override;
     const Settings& settings() const override { return mSettings; }
     PassTimes timings() const override;
-    std::vector<PlannedPass> plan(const Scene& scene) const override;
+    PassPlan plan(const Scene& scene) const override;
     TradeSettings trades() const override;
 
     // The reflected radiance of every texel side, weighted sum / total weight (rgb; index 2 * texel + side),
@@ -202,6 +208,7 @@ private:
     // transport): first_shot = auto then leaves the shot out, first_shot = on is refused.
     struct FirstShotChoice {
         bool runs = false;
+        std::string code; // the plan's reason code
         std::string why;
         std::string conflict;
     };
@@ -212,6 +219,7 @@ private:
     std::uint32_t directionIndex(std::uint32_t i) const;
     Settings mSettings;
     AtlasModeOptions mOptions; // mSettings, typed, read once
+    PassPlan mPlan;            // plan(scene) of the scene given to setScene: what iterate() runs
     const Scene* mScene = nullptr;
     vk::Context* mContext = nullptr;
     std::unique_ptr<Gpu> mGpu;

@@ -64,78 +64,70 @@ std::vector<ParamSpec> AtlasMode::parameters() {
                                       "the first shot (first_shot), the area emitters' direct light", 1);
 }
 
-std::vector<PlannedPass> AtlasMode::plan(const Scene& scene) const {
+PassPlan AtlasMode::plan(const Scene& scene) const {
     const SceneFeatures f = scene.features();
     const AtlasModeOptions& o = mOptions;
     const auto r = std::to_string(o.bundleResolution);
     const auto a = std::to_string(o.atlasResolution);
-    std::vector<PlannedPass> p;
-    p.push_back({"atlas", true, a + "^2 texels per page over " + std::to_string(f.triangles) +
-                                    " triangles, built once at set-up (charts, packing, exact texel areas)"});
-    p.push_back({"bundle build", true, "one " + r + "^2 bundle per direction with hit payload (triangle, barycentrics)"});
-    p.push_back({"bundle sort", true, "depth order: consecutive hits of a list see each other"});
+    PassPlan p;
+    p.add("atlas", "atlas", true, "always",
+          a + "^2 texels per page over " + std::to_string(f.triangles) +
+              " triangles, built once at set-up (charts, packing, exact texel areas)");
+    p.add("bundles", "bundle build", true, "always",
+          "one " + r + "^2 bundle per direction with hit payload (triangle, barycentrics)");
+    p.add("bundle-sort", "bundle sort", true, "always", "depth order: consecutive hits of a list see each other");
     const FirstShotChoice choice = firstShotChoice(scene);
     const bool shot = choice.runs;
-    if (shot) {
-        p.push_back({"first shot", true,
-                     std::to_string(o.emitterPoints) +
-                         " emitter point(s) per direction, a " + std::to_string(o.emitterShadowResolution) +
-                         "^2 cube each, their light averaged over each texel's sample points into the direct atlas"});
-    } else {
-        p.push_back({"first shot", false, choice.why});
-    }
+    p.add(kPassFirstShot, "first shot", shot, choice.code,
+          shot ? std::to_string(o.emitterPoints) + " emitter point(s) per direction, a " +
+                     std::to_string(o.emitterShadowResolution) +
+                     "^2 cube each, their light averaged over each texel's sample points into the direct atlas"
+               : choice.why);
     std::string exchange = shot ? "consecutive hits exchange reflected radiance both ways (sender = direct + mean)"
                                 : "consecutive hits exchange radiance both ways (interleaved: sender = emission + mean)";
     exchange += !f.emissiveMeshes ? "; no emissive meshes"
                 : shot            ? "; the emitters' light was shot (first shot), they send what they reflect"
                                   : "; emitters are the source";
     exchange += f.environment ? "; environment at list ends" : "; no environment: list ends receive nothing";
-    p.push_back({"exchange", true, exchange});
-    p.push_back({"update", true,
-                 "received radiance into compensated sums, only for the texel sides the direction touched (a list "
-                 "the exchange appends to); the sender is formed where it is read"});
+    p.add("exchange", "exchange", true, o.bounce ? "transfer-bounce" : "transfer-interleaved", exchange);
+    p.add("update", "update", true, "always",
+          "received radiance into compensated sums, only for the texel sides the direction touched (a list the "
+          "exchange appends to); the sender is formed where it is read");
     const std::uint32_t delay = o.delayIndirect;
-    if (delay > 0) {
-        p.push_back({"delayed indirect", true,
-                     "directions 1-" + std::to_string(delay) +
-                         ": emitters send, reflected light does not; one-bounce (layer direct) and multi-bounce "
-                         "(layer rest) estimates summed apart"});
-    }
-    if (f.shadowCastingLights() > 0) {
-        const auto n = std::to_string(o.lightSamples);
-        p.push_back({"shadow maps", true,
-                     std::to_string(f.shadowCastingLights()) + " point/spot light(s): one " +
-                         std::to_string(o.shadowResolution) +
-                         "^2 cube each, once; their light averaged over " + n + "x" + n +
-                         " points per texel into a direct atlas (layer direct), the exchange's first sender"});
-    } else {
-        p.push_back({"shadow maps", false, "no point or spot lights"});
-    }
+    p.add(kPassDelayedIndirect, "delayed indirect", delay > 0, delay > 0 ? "delay-indirect" : "delay-indirect-0",
+          delay > 0 ? "directions 1-" + std::to_string(delay) +
+                          ": emitters send, reflected light does not; one-bounce (layer direct) and multi-bounce "
+                          "(layer rest) estimates summed apart"
+                    : "delay_indirect = 0: one estimate");
+    const bool lights = f.shadowCastingLights() > 0;
+    const auto n = std::to_string(o.lightSamples);
+    p.add("light-shadow-cubes", "shadow maps", lights, lights ? "once-at-set-up" : "no-point-or-spot-lights",
+          lights ? std::to_string(f.shadowCastingLights()) + " point/spot light(s): one " +
+                       std::to_string(o.shadowResolution) + "^2 cube each, once; their light averaged over " + n + "x" +
+                       n + " points per texel into a direct atlas (layer direct), the exchange's first sender"
+                 : "no point or spot lights");
     const std::string& glossy = o.glossy;
-    if (!f.glossy) {
-        p.push_back({"glossy transfer", false, "no glossy materials"});
-        p.push_back({"glossy gather", false, "no glossy materials"});
-    } else if (glossy == "off" || o.bounce) {
-        const std::string why = glossy == "off" ? "glossy = off" : "transfer = bounce (a pass's sender is fixed)";
-        p.push_back({"glossy transfer", false, why + ": the lobes are NOT transported (their albedo only)"});
-        p.push_back({"glossy gather", false, why + ": no glossy reflection toward the eye"});
-    } else {
-        const bool lights = f.shadowCastingLights() > 0;
-        if (glossy == "transfer") {
-            p.push_back({"glossy transfer", true,
-                         std::string("glossy texels store what their lobe reflects toward the next direction (in the "
-                                     "receiver), the next direction sends it") +
-                             (lights ? "; point/spot lights' lobes per texel sample too" : "")});
-        } else {
-            p.push_back({"glossy transfer", false, "glossy = gather: no glossy bounce between surfaces"});
-        }
-        p.push_back({"glossy gather", true,
-                     std::string("per direction a jittered camera G-buffer; each glossy pixel's bundle neighbour "
-                                 "sends through the lobe toward the eye") +
-                         (lights ? "; point/spot lights' highlight per view sample" : "")});
-    }
-    p.push_back({"view", true, std::to_string(o.viewSamples) +
-                                   " jittered camera samples per pixel of the atlas at resolve (G-buffer + atlas uv raster)"});
+    const bool glossyOn = f.glossy && glossy != "off" && !o.bounce;
+    const std::string off = !f.glossy ? "no-glossy-material" : glossy == "off" ? "glossy-off" : "transfer-bounce";
+    const std::string why = glossy == "off" ? "glossy = off" : "transfer = bounce (a pass's sender is fixed)";
+    const bool transfer = glossyOn && glossy == "transfer";
+    p.add(kPassGlossyTransfer, "glossy transfer", transfer,
+          transfer ? "glossy-transfer" : glossyOn ? "glossy-gather" : off,
+          !f.glossy  ? "no glossy materials"
+          : !glossyOn ? why + ": the lobes are NOT transported (their albedo only)"
+          : transfer  ? std::string("glossy texels store what their lobe reflects toward the next direction (in the "
+                                    "receiver), the next direction sends it") +
+                            (lights ? "; point/spot lights' lobes per texel sample too" : "")
+                      : "glossy = gather: no glossy bounce between surfaces");
+    p.add(kPassGlossyGather, "glossy gather", glossyOn, glossyOn ? "glossy-" + glossy : off,
+          !f.glossy  ? "no glossy materials"
+          : !glossyOn ? why + ": no glossy reflection toward the eye"
+                      : std::string("per direction a jittered camera G-buffer; each glossy pixel's bundle neighbour "
+                                    "sends through the lobe toward the eye") +
+                            (lights ? "; point/spot lights' highlight per view sample" : ""));
+    p.add("view", "view", true, "always",
+          std::to_string(o.viewSamples) +
+              " jittered camera samples per pixel of the atlas at resolve (G-buffer + atlas uv raster)");
     return p;
 }
 

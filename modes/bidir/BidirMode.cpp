@@ -8,6 +8,7 @@
 #include "gpu/EmitterPointPass.h"
 #include "gpu/ShadowCubePass.h"
 #include "gpu/PackedTextures.h"
+#include "modes/LightShadowPass.h"
 #include "modes/bidir/EnvironmentBundles.h"
 #include "modes/bidir/ReflectiveShadowMap.h"
 #include "modes/bidir/VplSampler.h"
@@ -95,6 +96,7 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     mScene = &scene;
     mContext = ctx;
     mIterations = 0;
+    mPlan = plan(scene);
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
     const BidirOptions& o = mOptions;
@@ -102,10 +104,9 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     const auto shadowSide = static_cast<VkDeviceSize>(o.shadowResolution);
     const auto vplSide = static_cast<VkDeviceSize>(o.vplShadowResolution);
     const std::uint32_t strategy = o.strategy;
-    const bool twoBounce = o.twoBounce();
     const std::uint32_t points = o.emitterPoints;
     const std::uint32_t pointSide = o.emitterShadowResolution;
-    const bool areaLit = scene.features().emissiveMeshes && points > 0;
+    const bool areaLit = mPlan.runs(kBidirPassEmitterPoints);
     ctx->requireDeviceMemory(VkDeviceSize(width) * height * gpu::CameraPass::bytesPerPixel(shader::kBidirAccumLayers) +
                                  shadowSide * shadowSide * 4 * (6 * scene.lights.size() + 1) +
                                  vplSide * vplSide * 4 * (6 * pairs + 1) +
@@ -131,12 +132,10 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
                               vk::MemoryUse::Upload);
     g->bounds = scene.bounds();
     setUpInterleaving(scene, width, height);
-    g->environment = std::make_unique<EnvironmentBundles>(*ctx, scene, o.environmentBundles, 0.1f);
+    g->environment = std::make_unique<EnvironmentBundles>(
+        *ctx, scene, mPlan.runs(kBidirPassEnvironment) ? o.environmentBundles : 0u, 0.1f);
     g->textures = std::make_unique<gpu::PackedTextures>(*ctx, scene);
-    // Point/spot lights: bundles for the bundle strategy and the two-bounce term; area emitters (no
-    // VPL from them yet): for the bundle strategy's one-bounce term.
-    const bool pairBundles = (g->shadows->lightCount() > 0 && (strategy != shader::kBidirStrategyVpl || twoBounce)) ||
-                             (areaLit && strategy != shader::kBidirStrategyVpl);
+    const bool pairBundles = mPlan.runs(kBidirPassBundles);
     g->pairBundles = pairBundles;
 
     if (pairBundles || g->environment->count() > 0) {
@@ -200,7 +199,7 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     specialization[shader::kBidirSpecStrategy] = strategy;
     specialization[shader::kBidirSpecBounces] = o.bounces;
     specialization[shader::kBidirSpecSuppression] =
-        o.suppressesGlossy(features) ? o.suppression : shader::kBidirSuppressionNone;
+        mPlan.runs(kBidirPassSuppression) ? o.suppression : shader::kBidirSuppressionNone;
     specialization[shader::kBidirSpecGlossy] = features.glossy ? 1u : 0u;
     specialization[shader::kBidirSpecTextured] = features.textured ? 1u : 0u;
     specialization[shader::kBidirSpecEnvironment] = g->environment->count() > 0 ? 1u : 0u;
@@ -219,7 +218,7 @@ void BidirMode::setUpInterleaving(const Scene& scene, std::uint32_t width, std::
     o.n = mOptions.interleave;
     o.filter = mOptions.interleaveFilter;
     o.temporal = mOptions.temporal;
-    o.reproject = scene.camera.animated() || mOptions.reprojectAlways;
+    o.reproject = mPlan.runs(kBidirPassReprojection);
     o.twoSigma2 = static_cast<float>(mOptions.temporalDepthVariance);
     const std::uint32_t pairs = mOptions.pairs;
     if (o.n * o.n > pairs) {
@@ -293,8 +292,7 @@ void BidirMode::iterate(const IterationInfo& info) {
         if (o.fitVisible) g.visiblePoints = g.camera->gbuffer().visiblePoints(*mContext);
         buildBundles(info);
     }
-    const bool twoBounce = o.twoBounce();
-    const bool useVpls = lightCount > 0 && (strategy != shader::kBidirStrategyBundle || twoBounce);
+    const bool useVpls = mPlan.runs(kBidirPassVpls);
     std::vector<shader::BidirVpl> vpls(pairs);
     if (useVpls) {
         const WallSpan wall(g.wallVpls);
@@ -315,7 +313,7 @@ void BidirMode::iterate(const IterationInfo& info) {
     std::memcpy(g.vplBuffer.data(), vpls.data(), sizeof(shader::BidirVpl) * pairs);
 
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
-    const bool renderShadows = g.shadows->refreshFor(*mContext, *g.scene, info.time);
+    const bool renderShadows = mPlan.runs(kPassLightShadowCubes) && g.shadows->refreshFor(*mContext, *g.scene, info.time);
     g.emitterPoints->prepare(info.seed, mIterations, info.time);
     shader::BidirPush push{};
     if (g.pool) {
@@ -330,7 +328,7 @@ void BidirMode::iterate(const IterationInfo& info) {
     push.strategy = strategy;
     // Uniform directions: every direction of a hemisphere has the same density (the axis is arbitrary).
     push.hemispherePdf = g.directions->hemispherePdf(glm::vec3(0.0f, 0.0f, 1.0f));
-    push.suppression = o.suppressesGlossy(g.scene->features()) ? o.suppression : shader::kBidirSuppressionNone;
+    push.suppression = mPlan.runs(kBidirPassSuppression) ? o.suppression : shader::kBidirSuppressionNone;
     push.suppressionNeighbours = static_cast<float>(o.suppressionNeighbours);
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
     push.environmentRotation = g.scene->environmentRotation();

@@ -126,6 +126,15 @@ public:
     static constexpr const char* kReprojection = "reprojection";
     static constexpr const char* kTemporalDepthVariance = "temporal_depth_variance";
 
+    // The ids of the plan's passes that setScene() and iterate() execute (BidirPlan.cpp).
+    static constexpr const char* kBidirPassVpls = "vpls";
+    static constexpr const char* kBidirPassBundles = "bundles";
+    static constexpr const char* kBidirPassSuppression = "glossy-suppression";
+    static constexpr const char* kBidirPassInterleave = "interleave";
+    static constexpr const char* kBidirPassReprojection = "reprojection";
+    static constexpr const char* kBidirPassEnvironment = "environment-bundles";
+    static constexpr const char* kBidirPassEmitterPoints = "emitter-points";
+
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);
 
@@ -138,7 +147,7 @@ public:
     ImageSet resolve() override;
     const Settings& settings() const override { return mSettings; }
     PassTimes timings() const override;
-    std::vector<PlannedPass> plan(const Scene& scene) const override;
+    PassPlan plan(const Scene& scene) const override;
     TradeSettings trades() const override;
 
 private:
@@ -148,6 +157,7 @@ private:
 
     Settings mSettings;
     BidirOptions mOptions; // mSettings, typed, read once
+    PassPlan mPlan;        // plan(scene) of the scene given to setScene: what iterate() runs
     const Scene* mScene = nullptr;
     vk::Context* mContext = nullptr;
     std::unique_ptr<Gpu> mGpu;

@@ -2,6 +2,7 @@
 #include "modes/bidir/BidirMode.h"
 
 #include "modes/EmitterPointParameters.h"
+#include "modes/LightShadowPass.h"
 #include "scene/Scene.h"
 
 #include <string>
@@ -67,99 +68,109 @@ std::vector<ParamSpec> BidirMode::parameters() {
                                       "direct and one-bounce light from area emitters (0: area lights left out)", 0);
 }
 
-std::vector<PlannedPass> BidirMode::plan(const Scene& scene) const {
+// The pass ids iterate() and setScene() ask about are the kBidirPass* names in BidirMode.h.
+PassPlan BidirMode::plan(const Scene& scene) const {
     const SceneFeatures f = scene.features();
     const BidirOptions& o = mOptions;
     const std::string& strategy = o.strategyName;
     const auto pairs = std::to_string(o.pairs);
     const bool lights = f.shadowCastingLights() > 0;
     const bool twoBounce = o.twoBounce();
-    std::vector<PlannedPass> p;
-    p.push_back({"gbuffer", true, std::to_string(f.triangles) + " triangles, jittered every frame"});
-    p.push_back({"light shadow cubes", lights,
-                 lights ? std::to_string(f.shadowCastingLights()) + " light(s) x 6 faces; " +
-                              (f.animated ? "every frame (animated scene)" : "once (static scene)")
-                        : "no point or spot lights"});
-    const bool vpl = lights && (strategy != "bundle" || twoBounce);
-    p.push_back({"VPL rays + VPL shadow cubes", vpl,
-                 !lights ? "no point or spot light to start light paths"
-                 : vpl   ? pairs + " VPLs per frame (" +
-                             (o.rsmVpls ? "GPU, " + std::to_string(o.rsmResolution) + "^2 reflective shadow cube per light"
-                                  : std::string("CPU rays, Embree")) +
-                             "), a " +
-                             std::to_string(o.vplShadowResolution) + "^2 cube each" +
-                             (strategy == "bundle" ? " (for the two-bounce term only)" : "")
-                         : "strategy = bundle with bounces = 1 uses no VPL"});
+    const bool vplStrategy = strategy == "vpl";
+    const bool bundleStrategy = strategy == "bundle";
+    PassPlan p;
+    p.add("gbuffer", "gbuffer", true, "always", std::to_string(f.triangles) + " triangles, jittered every frame");
+    p.add(lightShadowCubesPass(f, "", "frame"));
+    const bool vpl = lights && (!bundleStrategy || twoBounce);
+    p.add(kBidirPassVpls, "VPL rays + VPL shadow cubes", vpl,
+          !lights ? "no-point-or-spot-lights" : !vpl ? "strategy-bundle-one-bounce" : o.rsmVpls ? "rsm" : "traced",
+          !lights ? "no point or spot light to start light paths"
+          : vpl   ? pairs + " VPLs per frame (" +
+                      (o.rsmVpls ? "GPU, " + std::to_string(o.rsmResolution) + "^2 reflective shadow cube per light"
+                                 : std::string("CPU rays, Embree")) +
+                      "), a " + std::to_string(o.vplShadowResolution) + "^2 cube each" +
+                      (bundleStrategy ? " (for the two-bounce term only)" : "")
+                  : "strategy = bundle with bounces = 1 uses no VPL");
     const bool area = f.emissiveMeshes && o.emitterPoints > 0;
-    const bool bundles = (lights && (strategy != "vpl" || twoBounce)) || (area && strategy != "vpl");
-    p.push_back({"bundle builds", bundles,
-                 !lights && !area ? "no point, spot or area light: nothing for camera paths to reach"
-                 : !lights && strategy == "vpl" ? "strategy = vpl: area emitters' one-bounce light needs the bundles"
-                 : bundles ? pairs + " bundles of " + std::to_string(o.bundleResolution) +
-                                 "^2 with hit payload per frame, around the " +
-                                 (o.fitVisible ? "visible points" : "scene's sphere") +
-                                 (strategy == "vpl" ? " (for the two-bounce term only)" : "")
-                           : "strategy = vpl with bounces = 1 uses no bundle"});
-    p.push_back({"evaluate", true, lights ? "direct + one-bounce (" + strategy + ")" +
-                                                (twoBounce ? " + two-bounce" : "") + " at every visible point"
-                                   : area ? (strategy == "vpl" ? "no point/spot light: area emitters' direct light"
-                                                               : "no point/spot light: area emitters' direct and "
-                                                                 "one-bounce light")
-                                          : f.environment && o.environmentBundles > 0
-                                              ? "no point/spot light: emitters, environment background and direct "
-                                                "environment light by bundles"
-                                              : "no point/spot light: emitters and environment background only"});
+    // Point/spot lights: bundles for the bundle strategy and the two-bounce term; area emitters (no
+    // VPL from them yet): for the bundle strategy's one-bounce term.
+    const bool bundles = (lights && (!vplStrategy || twoBounce)) || (area && !vplStrategy);
+    p.add(kBidirPassBundles, "bundle builds", bundles,
+          !lights && !area ? "no-lights"
+          : !bundles       ? (lights ? "strategy-vpl-one-bounce" : "strategy-vpl-area-only")
+          : vplStrategy    ? "two-bounce-term"
+                           : "camera-paths",
+          !lights && !area ? "no point, spot or area light: nothing for camera paths to reach"
+          : !bundles && !lights ? "strategy = vpl: area emitters' one-bounce light needs the bundles"
+          : bundles ? pairs + " bundles of " + std::to_string(o.bundleResolution) +
+                          "^2 with hit payload per frame, around the " +
+                          (o.fitVisible ? "visible points" : "scene's sphere") +
+                          (vplStrategy ? " (for the two-bounce term only)" : "")
+                    : "strategy = vpl with bounces = 1 uses no bundle");
+    p.add("evaluate", "evaluate", true,
+          lights ? "lights" : area ? "area-emitters-only" : f.environment && o.environmentBundles > 0 ? "environment-only" : "emitters-only",
+          lights ? "direct + one-bounce (" + strategy + ")" + (twoBounce ? " + two-bounce" : "") + " at every visible point"
+          : area ? (vplStrategy ? "no point/spot light: area emitters' direct light"
+                                : "no point/spot light: area emitters' direct and one-bounce light")
+          : f.environment && o.environmentBundles > 0
+              ? "no point/spot light: emitters, environment background and direct environment light by bundles"
+              : "no point/spot light: emitters and environment background only");
     const std::string& suppression = o.suppressionName;
     const bool suppress = o.suppressesGlossy(f);
-    p.push_back({"glossy suppression (" + suppression + ")", suppress,
-                 suppress               ? "sample densities (Eq. 13-17) at the glossy vertices of indirect paths"
-                 : suppression == "none" ? "suppression = none"
-                 : !lights              ? "no indirect light without point/spot lights"
-                                        : "no glossy material: every BRDF is Lambertian, nothing to suppress"});
+    p.add(kBidirPassSuppression, "glossy suppression (" + suppression + ")", suppress,
+          suppress ? "glossy-vertices" : suppression == "none" ? "suppression-none" : !lights ? "no-point-or-spot-lights" : "no-glossy-material",
+          suppress               ? "sample densities (Eq. 13-17) at the glossy vertices of indirect paths"
+          : suppression == "none" ? "suppression = none"
+          : !lights              ? "no indirect light without point/spot lights"
+                                 : "no glossy material: every BRDF is Lambertian, nothing to suppress");
     const std::uint32_t n = o.interleave;
     const bool filter = o.interleaveFilter;
-    p.push_back({"split + gather (interleave " + std::to_string(n) + ")", n > 1,
-                 n > 1 ? std::to_string(n * n) + " sub-images (pixels " + std::to_string(n) + " apart in x and y), " +
-                             std::to_string(o.pairs / (n * n)) + "+ pairs each"
-                       : "interleave = 1"});
-    p.push_back({"geometry-aware filter", n > 1 && filter,
-                 n == 1 ? "interleave = 1: nothing to recombine"
-                 : filter ? std::to_string(n) + "x" + std::to_string(n) + " neighbourhood, normal and depth weights"
-                          : "interleave_filter = off"});
+    p.add(kBidirPassInterleave, "split + gather (interleave " + std::to_string(n) + ")", n > 1,
+          n > 1 ? "interleave-on" : "interleave-1",
+          n > 1 ? std::to_string(n * n) + " sub-images (pixels " + std::to_string(n) + " apart in x and y), " +
+                      std::to_string(o.pairs / (n * n)) + "+ pairs each"
+                : "interleave = 1");
+    p.add("interleave-filter", "geometry-aware filter", n > 1 && filter,
+          n == 1 ? "interleave-1" : filter ? "filter-on" : "filter-off",
+          n == 1   ? "interleave = 1: nothing to recombine"
+          : filter ? std::to_string(n) + "x" + std::to_string(n) + " neighbourhood, normal and depth weights"
+                   : "interleave_filter = off");
     const bool temporal = o.temporal;
-    p.push_back({"temporal caches", temporal, temporal ? "4 sub-pixel caches, one rewritten per frame" : "temporal = off"});
+    p.add("temporal-caches", "temporal caches", temporal, temporal ? "temporal-on" : "temporal-off",
+          temporal ? "4 sub-pixel caches, one rewritten per frame" : "temporal = off");
     const bool reproject = temporal && (scene.camera.animated() || o.reprojectAlways);
-    p.push_back({"reverse reprojection", reproject,
-                 !temporal   ? "temporal = off"
-                 : reproject ? (scene.camera.animated() ? "the camera is animated: each cache warped into its camera"
-                                                         : "reprojection = always")
-                             : "static camera: every cache's warp is the identity (moving meshes still fail the "
-                               "log-depth test), the image is the same"});
+    p.add(kBidirPassReprojection, "reverse reprojection", reproject,
+          !temporal ? "temporal-off" : !reproject ? "static-camera" : scene.camera.animated() ? "animated-camera" : "reprojection-always",
+          !temporal  ? "temporal = off"
+          : reproject ? (scene.camera.animated() ? "the camera is animated: each cache warped into its camera"
+                                                  : "reprojection = always")
+                      : "static camera: every cache's warp is the identity (moving meshes still fail the "
+                        "log-depth test), the image is the same");
     const std::uint32_t envBundles = o.environmentBundles;
-    p.push_back({"environment bundles", f.environment && envBundles > 0,
-                 !f.environment   ? "no environment"
-                 : envBundles > 0 ? std::to_string(envBundles) + " bundles per frame by Eq. 2 importance: direct "
-                                                                 "environment light (indirect: not yet)"
-                                  : "environment_bundles = 0: the environment lights nothing",
-                 f.environment && envBundles == 0});
+    p.add(kBidirPassEnvironment, "environment bundles", f.environment && envBundles > 0,
+          !f.environment ? "no-environment" : envBundles > 0 ? "importance-directions" : "environment-bundles-0",
+          !f.environment   ? "no environment"
+          : envBundles > 0 ? std::to_string(envBundles) + " bundles per frame by Eq. 2 importance: direct "
+                                                          "environment light (indirect: not yet)"
+                           : "environment_bundles = 0: the environment lights nothing",
+          f.environment && envBundles == 0);
     if (f.emissiveMeshes && !area) {
-        p.push_back({"area light", false, "emitter_points = 0 leaves the area emitters out", true});
-    } else if (area) {
-        p.push_back({"emitter points", true,
-                     std::to_string(o.emitterPoints) + " point(s) on the area emitters per frame, by "
-                         "power, x 6 faces of " + std::to_string(o.emitterShadowResolution) +
+        p.add(kBidirPassEmitterPoints, "area light", false, "emitter-points-0", "emitter_points = 0 leaves the area emitters out",
+              true);
+    } else {
+        p.add(kBidirPassEmitterPoints, "emitter points", area, area ? "area-emitters" : "no-area-emitters",
+              area ? std::to_string(o.emitterPoints) + " point(s) on the area emitters per frame, by power, x 6 faces of " +
+                         std::to_string(o.emitterShadowResolution) +
                          "^2: their direct light, and their one-bounce light at the bundles' hits (bundle strategy "
-                         "alone: no VPL leaves an area emitter yet)"});
-        if (strategy == "vpl") {
-            p.push_back({"area light one-bounce", false,
-                         "strategy = vpl: no VPL leaves an area emitter yet, so their one-bounce light is left out",
-                         true});
+                         "alone: no VPL leaves an area emitter yet)"
+                   : "no emissive mesh");
+        if (area && vplStrategy) {
+            p.add("area-light-one-bounce", "area light one-bounce", false, "no-vpl-from-area-emitters",
+                  "strategy = vpl: no VPL leaves an area emitter yet, so their one-bounce light is left out", true);
         }
-        if (twoBounce) {
-            p.push_back({"area light two-bounce", false,
-                         "two-bounce light from area emitters needs VPLs from them: not yet, layer indirect2 "
-                         "lacks it",
-                         true});
+        if (area && twoBounce) {
+            p.add("area-light-two-bounce", "area light two-bounce", false, "no-vpl-from-area-emitters",
+                  "two-bounce light from area emitters needs VPLs from them: not yet, layer indirect2 lacks it", true);
         }
     }
     return p;

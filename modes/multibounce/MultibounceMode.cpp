@@ -10,6 +10,7 @@
 #include "gpu/PackedTextures.h"
 #include "gpu/ShadowCubePass.h"
 #include "modes/EmitterPointParameters.h"
+#include "modes/LightShadowPass.h"
 #include "modes/multibounce/SurfacePoints.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
@@ -100,61 +101,58 @@ struct MultibounceMode::Gpu {
 
 MultibounceMode::~MultibounceMode() = default;
 
-std::vector<PlannedPass> MultibounceMode::plan(const Scene& scene) const {
+PassPlan MultibounceMode::plan(const Scene& scene) const {
     const SceneFeatures f = scene.features();
     const MultibounceOptions& o = mOptions;
     const auto k = std::to_string(o.bundleCount);
     const auto r = std::to_string(o.bundleResolution);
-    std::vector<PlannedPass> p;
-    if (mOptions.imperfect) {
-        const auto n = std::to_string(o.points);
-        p.push_back({"surface points", true,
-                     k + " x " + n + " points uniform by area over " + std::to_string(f.triangles) +
-                         " triangles (a different set per direction), every iteration" +
-                         (f.textured ? "; UVs and their gradients over each splat's plane (texture coordinates at the corners)"
-                                     : "; no textures: UVs not interpolated")});
-        p.push_back({"bundle build", true, k + " bundles of " + r + "^2 pixels from " + n +
-                                               " point splats each (splat_scale " +
-                                               formatValue(o.splatScale) +
-                                               "), with hit payload, every iteration"});
-    } else {
-        p.push_back({"bundle build", true, k + " bundles of " + r + "^2 pixels over " + std::to_string(f.triangles) +
-                                               " triangles, with hit payload, every iteration"});
-    }
-    p.push_back({"bundle sort", true, "depth order per pixel: the next vertex is one step from the point's depth"});
-    if (f.shadowCastingLights() == 0) {
-        p.push_back({"shadow maps", false, "no point or spot lights"});
-    } else {
-        p.push_back({"shadow maps", true,
-                     std::to_string(f.shadowCastingLights()) + " light(s) x 6 faces at every path vertex; " +
-                         (f.animated ? "every iteration (animated scene)" : "once (static scene)")});
-    }
-    p.push_back({"gbuffer", true, "the camera's first vertex, jittered every iteration"});
+    PassPlan p;
+    const auto n = std::to_string(o.points);
+    p.add(kPassSurfacePoints, "surface points", o.imperfect, o.imperfect ? "imperfect-bundles" : "perfect-bundles",
+          o.imperfect ? k + " x " + n + " points uniform by area over " + std::to_string(f.triangles) +
+                            " triangles (a different set per direction), every iteration" +
+                            (f.textured ? "; UVs and their gradients over each splat's plane (texture coordinates at the corners)"
+                                        : "; no textures: UVs not interpolated")
+                      : "bundles = perfect: bundles of the triangles themselves");
+    p.add("bundles", "bundle build", true, o.imperfect ? "point-splats" : "triangles",
+          o.imperfect ? k + " bundles of " + r + "^2 pixels from " + n + " point splats each (splat_scale " +
+                            formatValue(o.splatScale) + "), with hit payload, every iteration"
+                      : k + " bundles of " + r + "^2 pixels over " + std::to_string(f.triangles) +
+                            " triangles, with hit payload, every iteration");
+    p.add("bundle-sort", "bundle sort", true, "always",
+          "depth order per pixel: the next vertex is one step from the point's depth");
+    p.add(lightShadowCubesPass(f, " at every path vertex", "iteration"));
+    p.add("gbuffer", "gbuffer", true, "always", "the camera's first vertex, jittered every iteration");
     const std::string& sampling = o.emitterSampling;
-    if (f.emissiveMeshes && sampling != "bundles") {
-        p.push_back({"emitter points", true,
-                     std::to_string(o.emitterPoints) +
-                         " point(s) on the emitters per iteration, by power, x 6 faces of " +
-                         std::to_string(o.emitterShadowResolution) + "^2, at every path vertex"});
-    }
-    std::string paths = "bounces through the bundles";
-    paths += !f.emissiveMeshes        ? "; no emitters to hit"
-             : sampling == "mis"      ? "; emitters hit (front faces), weighed against the emitter points (MIS)"
-             : sampling == "points"   ? "; emitters seen from the camera only, the emitter points light the rest"
-                                      : "; emitters hit (front faces)";
-    paths += f.environment ? "; environment for escaping paths" : "; no environment: escaping paths end";
+    const bool points = f.emissiveMeshes && o.emitterPointCount() > 0;
+    p.add(kPassEmitterPoints, "emitter points", points,
+          !f.emissiveMeshes ? "no-area-emitters" : points ? "emitter-sampling-" + sampling : "emitter-sampling-bundles",
+          points ? std::to_string(o.emitterPoints) + " point(s) on the emitters per iteration, by power, x 6 faces of " +
+                       std::to_string(o.emitterShadowResolution) + "^2, at every path vertex"
+          : !f.emissiveMeshes ? "no emissive mesh"
+                              : "emitter_sampling = bundles: emitters only where bundles hit them");
+    p.add("paths", "paths", true, f.emissiveMeshes ? "emitter-sampling-" + sampling : "no-area-emitters",
+          std::string("bounces through the bundles") +
+              (!f.emissiveMeshes    ? "; no emitters to hit"
+               : sampling == "mis"  ? "; emitters hit (front faces), weighed against the emitter points (MIS)"
+               : sampling == "points" ? "; emitters seen from the camera only, the emitter points light the rest"
+                                      : "; emitters hit (front faces)"));
+    p.add(kPassEnvironment, "environment", f.environment, f.environment ? "escaping-paths" : "no-environment",
+          f.environment ? "escaping paths take the environment's radiance" : "no environment: escaping paths end");
+    std::string textures = "no textures: no UV, gradient or texture work (the packed texture buffer holds the decode "
+                           "table only)";
     if (f.textured) {
         char mib[32];
         std::snprintf(mib, sizeof(mib), "%.1f", double(gpu::PackedTextures::words(scene)) * 4.0 / kMiB);
-        paths += "; textured albedo at every vertex from " + std::to_string(scene.textures.size()) +
-                 " textures packed in one buffer (" + mib + " MiB), bilinear at " +
-                 (!mOptions.imperfect ? std::string("the bundle payload's UV")
-                               : o.splatUvCentre ? std::string("each splat's centre UV")
-                                                                          : std::string("the UV over each splat (from its corners)"));
-    } else {
-        paths += "; no textures: no texture lookups (packed texture buffer holds the decode table only)";
+        textures = "albedo at every vertex from " + std::to_string(scene.textures.size()) +
+                   " textures packed in one buffer (" + mib + " MiB), bilinear at " +
+                   (!o.imperfect      ? std::string("the bundle payload's UV")
+                    : o.splatUvCentre ? std::string("each splat's centre UV")
+                                      : std::string("the UV over each splat (from its corners)"));
     }
-    p.push_back({"paths", true, paths});
+    p.add(kPassTextures, "textures", f.textured,
+          !f.textured ? "no-textures" : !o.imperfect ? "payload-uv" : o.splatUvCentre ? "splat-centre-uv" : "splat-corner-uvs",
+          textures);
     return p;
 }
 
@@ -165,12 +163,13 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     mScene = &scene;
     mContext = ctx;
     mIterations = 0;
+    mPlan = plan(scene);
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
     const auto shadowSide = static_cast<VkDeviceSize>(mOptions.shadowResolution);
     ctx->requireDeviceMemory(VkDeviceSize(width) * height * gpu::CameraPass::bytesPerPixel(shader::kMultibounceAccumLayers) +
                                  shadowSide * shadowSide * 4 * (6 * scene.lights.size() + 1) +
-                                 (scene.features().emissiveMeshes && mOptions.emitterPointCount() > 0
+                                 (mPlan.runs(kPassEmitterPoints)
                                       ? gpu::EmitterPointPass::bytesFor(mOptions.emitterPointCount(), mOptions.emitterShadowResolution)
                                       : 0),
                              "multibounce at " + std::to_string(width) + "x" + std::to_string(height));
@@ -178,8 +177,9 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
     g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kMultibounceAccumLayers);
     g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
-    g->emitterPoints =
-        std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene, mOptions.emitterPointCount(), mOptions.emitterShadowResolution);
+    g->emitterPoints = std::make_unique<gpu::EmitterPointPass>(
+        *ctx, *g->scene, scene, mPlan.runs(kPassEmitterPoints) ? mOptions.emitterPointCount() : 0u,
+        mOptions.emitterShadowResolution);
     g->bounds = scene.bounds();
 
     const std::uint32_t slots = mOptions.bundleCount;
@@ -201,7 +201,7 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     constexpr std::uint32_t kOtherScopes = 8;
     g->timer = vk::GpuTimer(*ctx, 2 * slots + kOtherScopes);
 
-    if (mOptions.imperfect) {
+    if (mPlan.runs(kPassSurfacePoints)) {
         g->points = std::make_unique<SurfacePoints>(*ctx, *g->scene, slots, mOptions.points, mOptions.splatScale);
     } else {
         g->noPoints = vk::Buffer(*ctx, sizeof(shader::MultibouncePoint), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
@@ -291,7 +291,7 @@ void MultibounceMode::iterate(const IterationInfo& info) {
 
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
     const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time, info.seed);
-    const bool renderShadows = g.shadows->refreshFor(*mContext, *g.scene, info.time);
+    const bool renderShadows = mPlan.runs(kPassLightShadowCubes) && g.shadows->refreshFor(*mContext, *g.scene, info.time);
     g.emitterPoints->prepare(info.seed, mIterations, info.time);
     shader::MultibouncePush push{};
     push.pool = g.pool->view();
@@ -302,8 +302,8 @@ void MultibounceMode::iterate(const IterationInfo& info) {
     push.lightCount = g.shadows->lightCount();
     push.shadowResolution = g.shadows->resolution();
     push.emitterCount = g.emitterCount;
-    push.flags = (g.scene->environmentPresent() ? shader::kMultibounceEnvironment : 0u) |
-                 (g.scene->features().textured ? shader::kMultibounceTextured : 0u) |
+    push.flags = (mPlan.runs(kPassEnvironment) ? shader::kMultibounceEnvironment : 0u) |
+                 (mPlan.runs(kPassTextures) ? shader::kMultibounceTextured : 0u) |
                  (mOptions.splatUvCentre ? shader::kMultibounceSplatCentreUv : 0u) |
                  (distinctBundles() ? shader::kMultibounceDistinctBundles : 0u) |
                  (mOptions.emitterPointsOnly() ? shader::kMultibounceEmitterPointsOnly : 0u);

@@ -93,6 +93,12 @@ public:
     static constexpr const char* kEmitterPoints = "emitter_points";
     static constexpr const char* kEmitterShadowResolution = "emitter_shadow_resolution";
 
+    // The ids of the plan's passes that setScene() and iterate() execute.
+    static constexpr const char* kPassSurfacePoints = "surface-points";
+    static constexpr const char* kPassEmitterPoints = "emitter-points";
+    static constexpr const char* kPassEnvironment = "environment";
+    static constexpr const char* kPassTextures = "textures";
+
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);
 
@@ -105,7 +111,7 @@ public:
     ImageSet resolve() override;
     const Settings& settings() const override { return mSettings; }
     PassTimes timings() const override;
-    std::vector<PlannedPass> plan(const Scene& scene) const override;
+    PassPlan plan(const Scene& scene) const override;
     TradeSettings trades() const override;
 
 private:
@@ -115,6 +121,7 @@ private:
 
     Settings mSettings;
     MultibounceOptions mOptions; // mSettings, typed, read once
+    PassPlan mPlan;              // plan(scene) of the scene given to setScene: what iterate() runs
     const Scene* mScene = nullptr;
     vk::Context* mContext = nullptr;
     std::unique_ptr<Gpu> mGpu;

@@ -2,6 +2,7 @@
 
 #include "base/Error.h"
 #include "modes/EmitterPointParameters.h"
+#include "modes/LightShadowPass.h"
 #include "sampling/PixelSamples.h"
 #include "scene/Scene.h"
 #include "vk/Commands.h"
@@ -46,40 +47,37 @@ struct RasterMode::Gpu {
 
 RasterMode::~RasterMode() = default;
 
-std::vector<PlannedPass> RasterMode::plan(const Scene& scene) const {
+PassPlan RasterMode::plan(const Scene& scene) const {
     SceneFeatures f = scene.features();
-    std::vector<PlannedPass> passes;
-    if (f.shadowCastingLights() == 0) {
-        passes.push_back({"shadow maps", false, "no point or spot lights"});
-    } else {
-        passes.push_back({"shadow maps", true,
-                          std::to_string(f.shadowCastingLights()) + " light(s) x 6 faces; " +
-                              (f.animated ? "every iteration (animated scene)" : "once (static scene)")});
-    }
-    passes.push_back({"gbuffer", true, std::to_string(f.triangles) + " triangles"});
+    PassPlan p;
+    const bool lights = f.shadowCastingLights() > 0;
+    p.add(lightShadowCubesPass(f, "", "iteration"));
+    p.add("gbuffer", "gbuffer", true, "always", std::to_string(f.triangles) + " triangles");
     const std::uint32_t points = mOptions.emitterPoints;
     const bool areaLight = f.emissiveMeshes && points > 0;
-    if (areaLight) {
-        passes.push_back({"emitter points", true,
-                          std::to_string(points) + " point(s) on the emitters per iteration, by power, x 6 faces of " +
-                              std::to_string(mOptions.emitterShadowResolution) + "^2"});
+    if (f.emissiveMeshes && !areaLight) {
+        // Raster is direct light from point and spot lights and (emitter points) area emitters.
+        p.add(kPassEmitterPoints, "area light", false, "emitter-points-0", "emitter_points = 0 leaves the area emitters out",
+              true);
+    } else {
+        p.add(kPassEmitterPoints, "emitter points", areaLight, areaLight ? "area-emitters" : "no-area-emitters",
+              areaLight ? std::to_string(points) + " point(s) on the emitters per iteration, by power, x 6 faces of " +
+                              std::to_string(mOptions.emitterShadowResolution) + "^2"
+                        : "no emissive mesh");
     }
-    std::string shading = f.shadowCastingLights() ? "direct light" : "";
+    std::string shading = lights ? "direct light" : "";
     auto add = [&shading](const std::string& s) { shading += (shading.empty() ? "" : ", ") + s; };
     if (f.emissiveMeshes) add("visible emitters");
     if (areaLight) add("direct light from the emitters");
     if (f.environment) add("environment behind geometry");
-    passes.push_back({"shade", true, shading.empty() ? "nothing lights the scene: black" : shading});
-    // Raster is direct light from point and spot lights and (emitter points) area emitters: the
-    // environment is seen, but lights nothing.
-    if (f.emissiveMeshes && !areaLight) {
-        passes.push_back({"area light", false, "emitter_points = 0 leaves the area emitters out", true});
-    }
+    p.add("shade", "shade", true, shading.empty() ? "unlit" : "lit",
+          shading.empty() ? "nothing lights the scene: black" : shading);
+    // The environment is seen, but lights nothing.
     if (f.environment) {
-        passes.push_back({"environment light", false, "raster lights with point, spot and area lights only: use skylight, "
-                                                      "reference or multibounce", true});
+        p.add("environment-light", "environment light", false, "not-rasters-job",
+              "raster lights with point, spot and area lights only: use skylight, reference or multibounce", true);
     }
-    return passes;
+    return p;
 }
 
 void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
@@ -89,6 +87,7 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     mScene = &scene;
     mContext = ctx;
     mIterations = 0;
+    mPlan = plan(scene);
     VkDevice device = ctx->device();
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
@@ -101,14 +100,15 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     const std::uint32_t pointSide = mOptions.emitterShadowResolution;
     ctx->requireDeviceMemory(pixels * gpu::CameraPass::bytesPerPixel(shader::kRasterAccumLayers) +
                                  shadowSide * shadowSide * 4 * (6 * lights + 1) +
-                                 (scene.features().emissiveMeshes ? gpu::EmitterPointPass::bytesFor(points, pointSide) : 0),
+                                 (mPlan.runs(kPassEmitterPoints) ? gpu::EmitterPointPass::bytesFor(points, pointSide) : 0),
                              "raster at " + std::to_string(width) + "x" + std::to_string(height));
 
     auto g = std::make_unique<Gpu>();
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
     g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kRasterAccumLayers);
     g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, mOptions.shadowResolution);
-    g->emitterPoints = std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene, points, pointSide);
+    g->emitterPoints = std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene,
+                                                               mPlan.runs(kPassEmitterPoints) ? points : 0u, pointSide);
     g->timer = vk::GpuTimer(*ctx);
 
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -137,7 +137,7 @@ void RasterMode::iterate(const IterationInfo& info) {
     const std::uint32_t width = g.camera->width();
     const std::uint32_t height = g.camera->height();
     const gpu::CameraSample sample = g.camera->sample(mIterations, mOptions.jitter, info.time, info.seed);
-    const bool renderShadows = g.shadows->refreshFor(*mContext, *g.scene, info.time);
+    const bool renderShadows = mPlan.runs(kPassLightShadowCubes) && g.shadows->refreshFor(*mContext, *g.scene, info.time);
     g.emitterPoints->prepare(info.seed, mIterations, info.time);
 
     mContext->submitAndWait([&](VkCommandBuffer cmd) {

@@ -39,6 +39,9 @@ public:
     static constexpr const char* kEmitterPoints = "emitter_points";
     static constexpr const char* kEmitterShadowResolution = "emitter_shadow_resolution";
 
+    // The ids of the plan's passes that setScene() and iterate() execute.
+    static constexpr const char* kPassEmitterPoints = "emitter-points";
+
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);
 
@@ -51,13 +54,14 @@ public:
     ImageSet resolve() override;
     const Settings& settings() const override { return mSettings; }
     PassTimes timings() const override;
-    std::vector<PlannedPass> plan(const Scene& scene) const override;
+    PassPlan plan(const Scene& scene) const override;
     TradeSettings trades() const override;
 
 private:
     struct Gpu;
     Settings mSettings;
     RasterOptions mOptions; // mSettings, typed, read once
+    PassPlan mPlan;         // plan(scene) of the scene given to setScene: what iterate() runs
     const Scene* mScene = nullptr;
     vk::Context* mContext = nullptr;
     std::unique_ptr<Gpu> mGpu;

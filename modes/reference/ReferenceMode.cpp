@@ -35,22 +35,25 @@ ReferenceSettings ReferenceMode::rendererSettings() const {
     return s;
 }
 
-std::vector<PlannedPass> ReferenceMode::plan(const Scene& scene) const {
+PassPlan ReferenceMode::plan(const Scene& scene) const {
     SceneFeatures f = scene.features();
-    std::vector<PlannedPass> passes;
-    passes.push_back({"build BVH", true, std::to_string(f.triangles) + " triangles (Embree, high quality)"});
-    passes.push_back({"trace", true, "1 path per pixel per iteration, at most " +
-                                         std::to_string(mSettings.getInt(kMaxSegments)) + " segments"});
-    passes.push_back({"emitter sampling", f.emissiveTriangles > 0,
-                      f.emissiveTriangles ? std::to_string(f.emissiveTriangles) + " emissive triangles, chosen by power, sampled by " +
-                                                                mSettings.getString(kEmitterSampling)
-                                          : "no emissive triangles"});
-    passes.push_back({"environment sampling", f.environment,
-                      f.environment ? (f.environmentMap ? "by " + mSettings.getString(kEnvSampling) : "constant: uniform")
-                                    : "no environment"});
-    passes.push_back({"point/spot lights", f.shadowCastingLights() > 0,
-                      std::to_string(f.shadowCastingLights()) + " delta light(s), every one at every vertex"});
-    return passes;
+    PassPlan p;
+    p.add("bvh", "build BVH", true, "always", std::to_string(f.triangles) + " triangles (Embree, high quality)");
+    p.add("trace", "trace", true, "always",
+          "1 path per pixel per iteration, at most " + std::to_string(mSettings.getInt(kMaxSegments)) + " segments");
+    p.add("emitter-sampling", "emitter sampling", f.emissiveTriangles > 0,
+          f.emissiveTriangles ? "emitter-sampling-" + mSettings.getString(kEmitterSampling) : "no-area-emitters",
+          f.emissiveTriangles ? std::to_string(f.emissiveTriangles) + " emissive triangles, chosen by power, sampled by " +
+                                    mSettings.getString(kEmitterSampling)
+                              : "no emissive triangles");
+    p.add("environment-sampling", "environment sampling", f.environment,
+          !f.environment ? "no-environment" : f.environmentMap ? "environment-map" : "constant-environment",
+          f.environment ? (f.environmentMap ? "by " + mSettings.getString(kEnvSampling) : "constant: uniform")
+                        : "no environment");
+    p.add("point-lights", "point/spot lights", f.shadowCastingLights() > 0,
+          f.shadowCastingLights() > 0 ? "every-light-every-vertex" : "no-point-or-spot-lights",
+          std::to_string(f.shadowCastingLights()) + " delta light(s), every one at every vertex");
+    return p;
 }
 
 void ReferenceMode::setScene(const Scene& scene, vk::Context*) {

@@ -42,7 +42,7 @@ public:
     ImageSet resolve() override;
     const Settings& settings() const override { return mSettings; }
     PassTimes timings() const override { return mTimes; }
-    std::vector<PlannedPass> plan(const Scene& scene) const override;
+    PassPlan plan(const Scene& scene) const override;
 
     // Traces one sample alone, returning its radiance and a log of its path.
     PathSample replay(int x, int y, std::uint32_t sampleIndex, std::uint32_t seed, std::vector<std::string>& log);

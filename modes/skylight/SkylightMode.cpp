@@ -83,17 +83,22 @@ struct SkylightMode::Gpu {
 
 SkylightMode::~SkylightMode() = default;
 
-std::vector<PlannedPass> SkylightMode::plan(const Scene& scene) const {
+PassPlan SkylightMode::plan(const Scene& scene) const {
     SceneFeatures f = scene.features();
-    std::vector<PlannedPass> p;
-    p.push_back({"gbuffer", true, std::to_string(f.triangles) + " triangles, jittered every iteration"});
+    PassPlan p;
+    p.add("gbuffer", "gbuffer", true, "always", std::to_string(f.triangles) + " triangles, jittered every iteration");
     const bool env = f.environment;
-    p.push_back({"bundle build", env,
-                 env ? std::to_string(mOptions.bundleResolution) + "^2 bundle of every triangle per direction"
-                     : "no environment: no light to test visibility for"});
-    p.push_back({"visibility", env, env ? "one list walk per visible point per direction" : "no environment"});
+    // Without an environment every sample is zero; the bundles are still built (the visibility pass
+    // accumulates the emitted light and the sample counts), and the plan says so.
+    p.add("bundles", "bundle build", true, env ? "environment" : "no-environment",
+          env ? std::to_string(mOptions.bundleResolution) + "^2 bundle of every triangle per direction"
+              : std::to_string(mOptions.bundleResolution) + "^2 bundle per direction, though no environment lights "
+                                                            "anything: the image is the emitted light alone");
+    p.add("visibility", "visibility", true, env ? "environment" : "no-environment",
+          env ? "one list walk per visible point per direction" : "no environment: every sample is zero");
     if (f.shadowCastingLights() || f.emissiveMeshes) {
-        p.push_back({"point/spot/area light", false, "not skylight's job: use reference, raster or bidir", true});
+        p.add("other-lights", "point/spot/area light", false, "not-skylights-job",
+              "not skylight's job: use reference, raster or bidir", true);
     }
     return p;
 }

@@ -71,7 +71,7 @@ public:
     ImageSet resolve() override;
     const Settings& settings() const override { return mSettings; }
     PassTimes timings() const override;
-    std::vector<PlannedPass> plan(const Scene& scene) const override;
+    PassPlan plan(const Scene& scene) const override;
     TradeSettings trades() const override;
 
 private:

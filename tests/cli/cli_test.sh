@@ -69,10 +69,11 @@ modes)
     ;;
 plan)
     "$bl" plan data/cornell-box/cornell.toml --mode raster | tee "$out/plan.txt" || fail "plan failed"
-    grep -q "skip  shadow maps: no point or spot lights" "$out/plan.txt" || fail "plan reason"
+    grep -q "skip  light shadow cubes: no point or spot lights  \[light-shadow-cubes: no-point-or-spot-lights\]" "$out/plan.txt" ||
+        fail "plan reason and its code"
     "$bl" plan data/cornell-box/cornell.toml --mode multibounce --set bundles=imperfect | tee "$out/plan-set.txt" ||
         fail "plan --set failed"
-    grep -q "no textures: UVs not interpolated" "$out/plan-set.txt" || fail "plan of the --set settings"
+    grep -q "\[surface-points: imperfect-bundles\]" "$out/plan-set.txt" || fail "plan of the --set settings"
     ;;
 bad_scene)
     printf '[camera]\nresolution = [512, 0]\n' >"$out/bad.toml"

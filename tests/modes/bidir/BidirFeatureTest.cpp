@@ -14,15 +14,9 @@ TEST_F(Bidir, PlanSkipsSuppressionWithoutGlossyMaterialImageUnchanged) {
         std::vector<std::string> settings = kCommon;
         settings.insert(settings.end(), {"strategy=mis", "bounces=2", "suppression=" + suppression});
         std::unique_ptr<Mode> mode = createMode("bidir", settings);
-        bool listed = false;
-        for (const PlannedPass& p : mode->plan(s)) {
-            if (p.name.rfind("glossy suppression", 0) == 0) {
-                listed = true;
-                EXPECT_EQ(p.runs, expectRuns) << suppression << ": " << p.reason;
-                std::printf("%s: %s\n", p.name.c_str(), p.reason.c_str());
-            }
-        }
-        EXPECT_TRUE(listed);
+        const PlannedPass p = mode->plan(s).pass("glossy-suppression");
+        EXPECT_EQ(p.runs, expectRuns) << suppression << ": " << p.reason;
+        EXPECT_EQ(p.code, expectRuns ? "glossy-vertices" : suppression == "none" ? "suppression-none" : "no-glossy-material");
         mode->setScene(s, &ctx());
         for (std::uint32_t f = 0; f < 4; ++f) mode->iterate({f, 7, 0.0});
         ImageSet out = mode->resolve();
@@ -216,11 +210,7 @@ TEST_F(Bidir, EnvironmentBundlesConvergeToReferenceDirect) {
         std::vector<std::string> settings = kCommon;
         settings.push_back("environment_bundles=" + std::to_string(kEnvironmentBundles));
         std::unique_ptr<Mode> mode = createMode("bidir", settings);
-        for (const PlannedPass& p : mode->plan(s)) {
-            if (p.name == "environment bundles") {
-                EXPECT_TRUE(p.runs) << p.reason;
-            }
-        }
+        EXPECT_EQ(mode->plan(s).pass("environment-bundles").code, "importance-directions");
         mode->setScene(s, &ctx());
         for (std::uint32_t f = 0; f < kEnvironmentFrames; ++f) mode->iterate({f, seed, 0.0});
         ImageSet out = mode->resolve();
@@ -244,11 +234,8 @@ TEST_F(Bidir, EnvironmentBundlesConvergeToReferenceDirect) {
     expectImageMeanConverged(perSeed, reference, "environment direct", kEnvironmentTolerance);
 
     std::unique_ptr<Mode> off = createMode("bidir", {"environment_bundles=0", "pairs_per_frame=2"});
-    for (const PlannedPass& p : off->plan(s)) {
-        if (p.name == "environment bundles") {
-            EXPECT_FALSE(p.runs) << p.reason;
-        }
-    }
+    EXPECT_FALSE(off->plan(s).runs("environment-bundles"));
+    EXPECT_EQ(off->plan(s).pass("environment-bundles").code, "environment-bundles-0");
     off->setScene(s, &ctx());
     off->iterate({0, 1, 0.0});
     double direct = 0.0;
