@@ -21,5 +21,6 @@ void addBenchCommand(CLI::App& app, Action& action);
 void addRunCommand(CLI::App& app, Action& action);
 void addAtlasCommand(CLI::App& app, Action& action);
 void addReportCommand(CLI::App& app, Action& action);
+void addViewCommand(CLI::App& app, Action& action);
 
 } // namespace bl::cli

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
     bl::cli::addRunCommand(app, action);
     bl::cli::addAtlasCommand(app, action);
     bl::cli::addReportCommand(app, action);
+    bl::cli::addViewCommand(app, action);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

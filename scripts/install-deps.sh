@@ -14,6 +14,8 @@ packages=(
     libembree-dev libtbb-dev
     # The Python module (pybind11) and its tests
     pybind11-dev python3-dev python3-pytest
+    # `bundlelab view`: the window (GLFW) and the headless X server its tests run under
+    libglfw3-dev xvfb xauth
     # `bundlelab run --slurm`: a single-node Slurm cluster the runner's test starts (scripts/local-slurm.sh)
     slurmctld slurmd slurm-client munge
     # glTF files written by real exporters for the importer's tests: the Khronos sample models and

@@ -89,19 +89,30 @@ void writeExr(const std::string& path, const std::vector<ImageLayer>& layers,
 
 void writeExr(const std::string& path, const Image& image) { writeExr(path, {{"", &image}}); }
 
-void writePng(const std::string& path, const Image& image, float exposure) {
+Rgba8Image toSrgb8(const Image& image, float exposure) {
     const float scale = std::exp2(exposure);
-    std::vector<unsigned char> bytes(image.pixelCount() * 3);
+    Rgba8Image out{image.width(), image.height(), std::vector<unsigned char>(image.pixelCount() * 4)};
     for (std::size_t i = 0; i < image.pixelCount(); ++i) {
         glm::vec3 p = image.pixels()[i];
         bool finite = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
         for (int c = 0; c < 3; ++c) {
             float v = finite ? linearToSrgb(std::clamp(p[c] * scale, 0.0f, 1.0f)) : (c == 1 ? 0.0f : 1.0f);
-            bytes[i * 3 + c] = static_cast<unsigned char>(std::lround(v * 255.0f));
+            out.texels[i * 4 + c] = static_cast<unsigned char>(std::lround(v * 255.0f));
         }
+        out.texels[i * 4 + 3] = 255;
+    }
+    return out;
+}
+
+void writePng(const std::string& path, const Image& image, float exposure) { writePng(path, toSrgb8(image, exposure)); }
+
+void writePng(const std::string& path, const Rgba8Image& image) {
+    std::vector<unsigned char> bytes(std::size_t(image.width) * image.height * 3);
+    for (std::size_t i = 0; i < bytes.size() / 3; ++i) {
+        for (int c = 0; c < 3; ++c) bytes[i * 3 + c] = image.texels[i * 4 + c];
     }
     std::string tmp = path + ".tmp";
-    if (!stbi_write_png(tmp.c_str(), image.width(), image.height(), 3, bytes.data(), image.width() * 3)) {
+    if (!stbi_write_png(tmp.c_str(), image.width, image.height, 3, bytes.data(), image.width * 3)) {
         throw Error(path + ": cannot write PNG");
     }
     commitFile(tmp, path);

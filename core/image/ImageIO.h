@@ -21,9 +21,14 @@ void writeExr(const std::string& path, const std::vector<ImageLayer>& layers,
               const std::map<std::string, std::string>& attributes = {});
 void writeExr(const std::string& path, const Image& image);
 
-// Linear radiance -> sRGB preview, scaled by 2^exposure and clamped; non-finite pixels turn magenta
-// so that they are seen.
+// Linear radiance -> 8-bit sRGB (alpha 255), scaled by 2^exposure and clamped; non-finite pixels
+// turn magenta so that they are seen. The PNG preview's and the viewer's tonemap.
+Rgba8Image toSrgb8(const Image& image, float exposure = 0.0f);
+
+// The sRGB preview of linear radiance: toSrgb8, written as an RGB PNG.
 void writePng(const std::string& path, const Image& image, float exposure = 0.0f);
+// An 8-bit image as an RGB PNG (alpha dropped).
+void writePng(const std::string& path, const Rgba8Image& image);
 
 // Portable float map (RGB float32, little-endian): a float image any script can read (numpy) where
 // no EXR reader exists. Written atomically.

@@ -127,7 +127,7 @@ bool layerAvailable(const char* name) {
                        [name](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
-VkInstance createInstance(bool validation) {
+VkInstance createInstance(bool validation, const std::vector<std::string>& extraExtensions = {}) {
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "bundlelab";
     app.pEngineName = "bundlelab";
@@ -141,6 +141,7 @@ VkInstance createInstance(bool validation) {
         layers.push_back(kValidationLayer);
         extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     }
+    for (const std::string& e : extraExtensions) extensions.push_back(e.c_str());
     VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     info.pApplicationInfo = &app;
     info.enabledLayerCount = static_cast<std::uint32_t>(layers.size());
@@ -189,7 +190,7 @@ VkBool32 Context::onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkD
 
 Context::Context(const ContextOptions& options) {
     try {
-        mInstance = createInstance(options.validation);
+        mInstance = createInstance(options.validation, options.instanceExtensions);
         if (options.validation) {
             VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
             info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
@@ -263,6 +264,11 @@ Context::Context(const ContextOptions& options) {
         VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &use};
         deviceInfo.queueCreateInfoCount = 1;
         deviceInfo.pQueueCreateInfos = &queueInfo;
+        const char* swapchainExtension = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+        if (options.swapchain) {
+            deviceInfo.enabledExtensionCount = 1;
+            deviceInfo.ppEnabledExtensionNames = &swapchainExtension;
+        }
         BL_VK_CHECK(vkCreateDevice(mPhysical, &deviceInfo, nullptr, &mDevice));
         vkGetDeviceQueue(mDevice, mQueueFamily, 0, &mQueue);
 

@@ -1,5 +1,6 @@
-// The headless Vulkan context: instance (+ validation messenger), the chosen physical device, a
-// logical device with one graphics+compute queue, and a command pool. No window, no surface.
+// The Vulkan context: instance (+ validation messenger), the chosen physical device, a logical
+// device with one graphics+compute queue, and a command pool. Headless by default; a window
+// (viewer/) adds the instance extensions of its surface and asks for the swapchain extension.
 //
 // Device choice (`--device`): an index into the list of Vulkan 1.3 devices, or a case-insensitive
 // substring of the device name; by default the first discrete GPU, else integrated, else any other
@@ -18,6 +19,8 @@ namespace bl::vk {
 struct ContextOptions {
     std::string device;      // "" = automatic
     bool validation = false; // VK_LAYER_KHRONOS_validation + messenger; errors are counted
+    std::vector<std::string> instanceExtensions; // e.g. a window system's surface extensions
+    bool swapchain = false;                      // enable VK_KHR_swapchain on the device
 };
 
 struct DeviceInfo {
@@ -78,6 +81,10 @@ public:
     std::size_t validationErrorCount() const;
     std::vector<std::string> validationErrors() const;
 
+    // Destroys the device and the instance now, with the validation messenger alive until the end
+    // so that objects still alive are reported (and counted) as errors; validationErrorCount()
+    // stays readable afterwards. The context cannot be used again.
+    void close() { release(); }
     // All Vulkan 1.3 devices, for `--device` help and listing.
     static std::vector<DeviceInfo> listDevices();
 
