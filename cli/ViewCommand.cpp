@@ -66,7 +66,21 @@ class ViewSession {
 public:
     explicit ViewSession(const ViewOptions& o)
         : mOptions(o), mAssignments(o.assignments), mExposure(o.exposure), mPlaying(o.play) {
+        // Temporal caches (bidir) are reprojected into each cache's camera: here the camera moves by
+        // hand, which the plan cannot know from the scene, so the warp runs always (for a camera at
+        // rest the image is the same to the bit, tests/modes/bidir/InterleavingTest.cpp).
         mMode = createMode(o.mode, mAssignments); // bad settings fail before a window opens
+        const auto resolved = mMode->settings().resolved();
+        const bool temporal = std::any_of(resolved.begin(), resolved.end(), [](const auto& kv) {
+            return kv.first == "temporal" && kv.second == "on";
+        });
+        const bool reprojectionSet = std::any_of(mAssignments.begin(), mAssignments.end(),
+                                                 [](const std::string& a) { return a.rfind("reprojection=", 0) == 0; });
+        if (temporal && !reprojectionSet) {
+            mAssignments.push_back("reprojection=always");
+            mMode = createMode(o.mode, mAssignments);
+            log::info("view: temporal caches reprojected always (reprojection=always): the camera moves by hand");
+        }
         mScene = loadScene(o.scene);
         if (o.width > 0) mScene.camera.resolution.x = o.width;
         if (o.height > 0) mScene.camera.resolution.y = o.height;
@@ -134,7 +148,11 @@ private:
 
     void moved() {
         mScene.camera.keys.clear(); // the user's camera replaces a keyframed one
-        mRestart = true;
+        if (mMode->viewIndependent() && !mPlaying) {
+            mImages.reset(); // the same estimate, resolved again from the new camera
+        } else {
+            mRestart = true;
+        }
     }
 
     // One refresh: restart if needed, one iteration while there is budget, then show it.

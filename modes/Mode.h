@@ -124,6 +124,10 @@ public:
     virtual PassPlan plan(const Scene& scene) const = 0;
     // The settings modes/SettingTrades.h checks against the scene; none by default.
     virtual TradeSettings trades() const { return {}; }
+    // True when what iterate() has accumulated does not depend on the camera, so that a new
+    // camera needs resolve() only, not a new estimate (atlas without view-dependent passes). The
+    // scene's camera is read at resolve().
+    virtual bool viewIndependent() const { return false; }
 };
 
 // One warning line per light the scene has and `mode` leaves out (its plan's lightLeftOut passes),

@@ -171,6 +171,8 @@ public:
     const Settings& settings() const override { return mSettings; }
     PassTimes timings() const override;
     PassPlan plan(const Scene& scene) const override;
+    // The exchange lives in the atlas; only the glossy gather (and its highlights) follows the eye.
+    bool viewIndependent() const override { return mPlan.size() > 0 && !mPlan.runs(kPassGlossyGather); }
     TradeSettings trades() const override;
 
     // The reflected radiance of every texel side, weighted sum / total weight (rgb; index 2 * texel + side),
