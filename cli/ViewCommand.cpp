@@ -69,18 +69,7 @@ public:
         // Temporal caches (bidir) are reprojected into each cache's camera: here the camera moves by
         // hand, which the plan cannot know from the scene, so the warp runs always (for a camera at
         // rest the image is the same to the bit, tests/modes/bidir/InterleavingTest.cpp).
-        mMode = createMode(o.mode, mAssignments); // bad settings fail before a window opens
-        const auto resolved = mMode->settings().resolved();
-        const bool temporal = std::any_of(resolved.begin(), resolved.end(), [](const auto& kv) {
-            return kv.first == "temporal" && kv.second == "on";
-        });
-        const bool reprojectionSet = std::any_of(mAssignments.begin(), mAssignments.end(),
-                                                 [](const std::string& a) { return a.rfind("reprojection=", 0) == 0; });
-        if (temporal && !reprojectionSet) {
-            mAssignments.push_back("reprojection=always");
-            mMode = createMode(o.mode, mAssignments);
-            log::info("view: temporal caches reprojected always (reprojection=always): the camera moves by hand");
-        }
+        mMode = createViewMode(mAssignments); // bad settings fail before a window opens
         mScene = loadScene(o.scene);
         if (o.width > 0) mScene.camera.resolution.x = o.width;
         if (o.height > 0) mScene.camera.resolution.y = o.height;
@@ -139,6 +128,26 @@ public:
     }
 
 private:
+    // The mode with `assignments` (throws the CLI's error for a bad one). Temporal caches (bidir)
+    // are reprojected into each cache's camera: here the camera moves by hand, which the plan
+    // cannot know from the scene, so with temporal = on the warp runs always unless the user chose
+    // (for a camera at rest the image is the same to the bit, tests/modes/bidir/InterleavingTest.cpp).
+    std::unique_ptr<Mode> createViewMode(std::vector<std::string>& assignments) const {
+        std::unique_ptr<Mode> mode = createMode(mOptions.mode, assignments);
+        const auto resolved = mode->settings().resolved();
+        const bool temporal = std::any_of(resolved.begin(), resolved.end(), [](const auto& kv) {
+            return kv.first == "temporal" && kv.second == "on";
+        });
+        const bool chosen = std::any_of(assignments.begin(), assignments.end(),
+                                        [](const std::string& a) { return a.rfind("reprojection=", 0) == 0; });
+        if (temporal && !chosen) {
+            assignments.push_back("reprojection=always");
+            mode = createMode(mOptions.mode, assignments);
+            log::info("view: temporal caches reprojected always (reprojection=always): the camera moves by hand");
+        }
+        return mode;
+    }
+
     // A new estimate: after a camera move, a setting, or the next played frame.
     void restart() {
         mMode->setScene(mScene, mContext.get());
@@ -241,7 +250,7 @@ private:
         }
         next.push_back(assignment);
         try {
-            std::unique_ptr<Mode> mode = createMode(mOptions.mode, next);
+            std::unique_ptr<Mode> mode = createViewMode(next);
             mMode = std::move(mode);
             mAssignments = next;
             mMessage = "set " + assignment;
@@ -332,7 +341,13 @@ private:
         } else if (c.verb == "set") {
             if (!setSetting(c.text)) mScriptFailed = true;
         } else if (c.verb == "iterate") {
-            done = !mRestart && mIterations >= std::uint32_t(c.numbers[0]);
+            const auto n = std::uint32_t(c.numbers[0]);
+            const std::uint32_t limit = mPlaying ? mOptions.frameIterations : mOptions.maxIterations;
+            if (limit > 0 && n > limit) {
+                throw Error(where + "iterate " + std::to_string(n) + ": an estimate here stops at " + std::to_string(limit) +
+                            (mPlaying ? " iterations per played frame (--frame-iterations)" : " iterations (--max-iterations)"));
+            }
+            done = !mRestart && mIterations >= n;
             if (done && mIterations > std::uint32_t(c.numbers[0])) {
                 throw Error(where + "iterate " + std::to_string(std::uint32_t(c.numbers[0])) + ": the estimate already holds " +
                             std::to_string(mIterations) + " iterations (use --max-iterations, or restart with key R)");
@@ -342,7 +357,8 @@ private:
             done = mFramesLeft-- <= 0;
             if (done) mFramesLeft = -1;
         } else if (c.verb == "screenshot") {
-            screenshot(c.text);
+            done = !mRestart; // after a move or a setting: the new estimate, not the last one
+            if (done) screenshot(c.text);
         } else if (c.verb == "quit") {
             mQuit = true;
         }

@@ -49,8 +49,12 @@ bool CameraControl::apply(const InputEvent& e, CameraPose& pose) const {
     glm::vec3 offset = mStyle == Style::Orbit ? pose.position - pose.target : pose.target - pose.position;
     const float sign = mStyle == Style::Orbit ? 1.0f : -1.0f;
     offset = turn(offset, glm::normalize(pose.up), yaw);
-    const glm::vec3 turned = turn(offset, glm::normalize(glm::cross(offset, pose.up)), sign * pitch);
-    if (std::abs(glm::dot(glm::normalize(turned), glm::normalize(pose.up))) < 0.995f) offset = turned;
+    // Pitch about the axis across the view; a view along `up` has none (no pitch, yaw only).
+    const glm::vec3 across = glm::cross(offset, pose.up);
+    if (glm::length(across) > 1e-6f * glm::length(offset) * glm::length(pose.up)) {
+        const glm::vec3 turned = turn(offset, glm::normalize(across), sign * pitch);
+        if (std::abs(glm::dot(glm::normalize(turned), glm::normalize(pose.up))) < 0.995f) offset = turned;
+    }
     if (mStyle == Style::Orbit) pose.position = pose.target + offset;
     else pose.target = pose.position + offset;
     return true;

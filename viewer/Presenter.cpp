@@ -16,9 +16,16 @@ Presenter::Presenter(const vk::Context& ctx, VkSurfaceKHR surface, std::uint32_t
         vkDestroySurfaceKHR(ctx.instance(), surface, nullptr);
         throw Error("bundlelab view: " + ctx.info().name + " cannot present to this window (pick another --device)");
     }
-    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    BL_VK_CHECK(vkCreateFence(ctx.device(), &fenceInfo, nullptr, &mAcquired));
-    createSwapchain(width, height);
+    try {
+        VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        BL_VK_CHECK(vkCreateFence(ctx.device(), &fenceInfo, nullptr, &mAcquired));
+        createSwapchain(width, height);
+    } catch (...) {
+        destroySwapchain();
+        if (mAcquired) vkDestroyFence(ctx.device(), mAcquired, nullptr);
+        vkDestroySurfaceKHR(ctx.instance(), surface, nullptr);
+        throw;
+    }
 }
 
 Presenter::~Presenter() {
@@ -51,7 +58,13 @@ void Presenter::createSwapchain(std::uint32_t width, std::uint32_t height) {
     });
     if (chosen == formats.end()) throw Error("bundlelab view: the surface offers no 8-bit UNORM RGBA/BGRA format");
     mFormat = chosen->format;
-    mExtent = caps.currentExtent.width != UINT32_MAX ? caps.currentExtent : VkExtent2D{width, height};
+    // The surface's size, or (where it follows the swapchain, as on Wayland) the frame's, within
+    // the surface's limits. A minimised window has no size: nothing is made, nothing is shown.
+    mExtent = caps.currentExtent.width != UINT32_MAX
+                  ? caps.currentExtent
+                  : VkExtent2D{std::clamp(width, caps.minImageExtent.width, caps.maxImageExtent.width),
+                               std::clamp(height, caps.minImageExtent.height, caps.maxImageExtent.height)};
+    if (mExtent.width == 0 || mExtent.height == 0) return;
     VkSwapchainCreateInfoKHR info{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
     info.surface = mSurface;
     info.minImageCount = std::max(caps.minImageCount, 2u);
@@ -76,6 +89,10 @@ void Presenter::createSwapchain(std::uint32_t width, std::uint32_t height) {
 
 void Presenter::present(const std::vector<unsigned char>& rgba, std::uint32_t width, std::uint32_t height) {
     VkDevice device = mContext->device();
+    if (!mSwapchain) { // minimised: try again, show nothing until the window has a size
+        createSwapchain(width, height);
+        if (!mSwapchain) return;
+    }
     std::uint32_t index = 0;
     VkResult r = vkAcquireNextImageKHR(device, mSwapchain, UINT64_MAX, VK_NULL_HANDLE, mAcquired, &index);
     if (r == VK_ERROR_OUT_OF_DATE_KHR) {

@@ -221,10 +221,15 @@ private:
             fail(label + " has " + std::to_string(a.count) + " elements, POSITION " + std::to_string(count));
         }
         std::vector<std::vector<double>> out;
+        // A position or texture coordinate that is not finite has no meaning to repair: refused. A
+        // normal that is not finite is replaced by mesh cleanup (counted in "repaired normals").
+        const bool mustBeFinite = name != "NORMAL";
         for (std::size_t i = 0; i < a.count; ++i) {
             out.push_back(read(a, i, label));
             for (double v : out.back()) {
-                if (!std::isfinite(v)) fail(label + ": element " + std::to_string(i) + " is " + formatNumber(v) + " (not finite)");
+                if (mustBeFinite && !std::isfinite(v)) {
+                    fail(label + ": element " + std::to_string(i) + " is " + formatNumber(v) + " (not finite)");
+                }
             }
         }
         return out;

@@ -517,7 +517,8 @@ void lightIfUnlit(Scene& scene, const std::string& path) {
     const Bounds b = scene.bounds();
     Light head;
     head.position = scene.camera.pose.position;
-    const float d = glm::length(scene.camera.pose.position - b.center());
+    // Unit irradiance at the centre; a camera at the centre gets the bounding radius's worth.
+    const float d = std::max(glm::length(scene.camera.pose.position - b.center()), b.radius());
     head.intensity = glm::vec3(d * d);
     scene.lights.push_back(head);
     scene.environment.present = true;

@@ -56,6 +56,7 @@ std::string devicesOfTasks(const ExperimentConfig& config, const std::string& ou
     std::set<std::string> devices;
     for (const Task& t : config.tasks) {
         std::string text;
+        if (!fs::is_regular_file(fs::path(outDir) / "tasks" / t.id / "done.json")) continue; // finished tasks only
         if (!readFileIfExists((fs::path(outDir) / "tasks" / t.id / "environment.json").string(), text)) continue;
         const std::string key = "\"device\": \"";
         const auto start = text.find(key);

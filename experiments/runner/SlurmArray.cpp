@@ -29,15 +29,21 @@ struct Paths {
 Paths pathsOf(const ExperimentConfig& config, const std::string& configPath, const RunOptions& run) {
     Paths p;
     p.config = configPath;
-    p.outDir = fs::absolute(resultsDirectory(config, run)).lexically_normal().string();
+    // One spelling per directory (trailing separators, "..", symlinks): its hash names the jobs.
+    fs::path out = fs::weakly_canonical(fs::absolute(resultsDirectory(config, run)));
+    if (!out.has_filename()) out = out.parent_path();
+    p.outDir = out.string();
     p.slurmDir = (fs::path(p.outDir) / "slurm").string();
     std::error_code ec;
     p.binary = fs::read_symlink("/proc/self/exe", ec).string();
     if (ec || p.binary.empty()) {
         throw Error("cannot find the bundlelab binary's own path (/proc/self/exe) for the job script");
     }
-    // One name per results directory: the queue then tells which jobs write into it.
-    p.jobName = "bl-" + config.name + "-" + hashText(p.outDir).substr(0, 8);
+    // One name per results directory: the queue then tells which jobs write into it. Only
+    // characters that neither sbatch nor squeue --name (a comma-separated list) read specially.
+    std::string name;
+    for (char c : config.name) name += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' ? c : '_';
+    p.jobName = "bl-" + name + "-" + hashText(p.outDir).substr(0, 8);
     return p;
 }
 
@@ -70,11 +76,14 @@ std::string submit(const std::vector<std::string>& options, const std::string& s
     argv.insert(argv.end(), options.begin(), options.end());
     argv.push_back(script);
     const CommandOutput o = runCommand(argv);
-    // --parsable prints "JOBID" or "JOBID;CLUSTER".
+    // --parsable prints "JOBID" or "JOBID;CLUSTER" on a line of its own; a site's plugins may print
+    // other lines (stderr is in the same output): the last line of that form is the id.
     std::string id;
-    for (char c : o.output) {
-        if (!std::isdigit(static_cast<unsigned char>(c))) break;
-        id += c;
+    for (const std::string& l : lines(o.output)) {
+        std::string digits;
+        std::size_t i = 0;
+        while (i < l.size() && std::isdigit(static_cast<unsigned char>(l[i]))) digits += l[i++];
+        if (!digits.empty() && (i == l.size() || l[i] == ';')) id = digits;
     }
     if (o.exitStatus != 0 || id.empty()) {
         throw Error("sbatch refused " + script + " (" + describeCommand(argv) + " exited with " +
@@ -90,14 +99,29 @@ std::string runLine(const Paths& p, const RunOptions& run, const std::string& sl
     return line;
 }
 
-std::string header(const Paths& p, const SlurmOptions& slurm, const std::string& what) {
+// The sbatch options of a job of this directory. Passed on sbatch's command line (each one argument,
+// so paths with spaces hold); `%` in the log directory is Slurm's pattern character and is doubled
+// before `pattern` ("%j.out", "%A_%a.out") is appended. `perElement`: the array's --time and extra
+// options (the reference job gets the partition only: it renders on the CPU, one reference after
+// another, with the partition's time limit).
+std::vector<std::string> jobOptions(const Paths& p, const SlurmOptions& slurm, const std::string& pattern, bool perElement) {
+    std::string logs;
+    for (char c : (fs::path(p.slurmDir) / "logs").string()) logs += c == '%' ? std::string("%%") : std::string(1, c);
+    std::vector<std::string> o{"--job-name=" + p.jobName, "--chdir=" + fs::current_path().string(),
+                               "--output=" + logs + "/" + pattern};
+    if (!slurm.partition.empty()) o.push_back("--partition=" + slurm.partition);
+    if (perElement) {
+        if (!slurm.time.empty()) o.push_back("--time=" + slurm.time);
+        o.insert(o.end(), slurm.sbatchArgs.begin(), slurm.sbatchArgs.end());
+    }
+    return o;
+}
+
+std::string header(const Paths& p, const std::string& what, const std::vector<std::string>& options) {
     std::string s = "#!/bin/bash\n# Written by `bundlelab run " + p.config + " --slurm`: " + what + "\n";
-    s += "#SBATCH --job-name=" + p.jobName + "\n";
-    s += "#SBATCH --chdir=" + fs::current_path().string() + "\n";
-    if (!slurm.partition.empty()) s += "#SBATCH --partition=" + slurm.partition + "\n";
-    if (!slurm.time.empty()) s += "#SBATCH --time=" + slurm.time + "\n";
-    for (const std::string& a : slurm.sbatchArgs) s += "#SBATCH " + a + "\n";
-    return s;
+    s += "# Submitted as: sbatch";
+    for (const std::string& o : options) s += " " + shellQuote(o);
+    return s + " THIS_SCRIPT\n";
 }
 
 int nextSubmission(const std::string& slurmDir) {
@@ -172,21 +196,22 @@ int submitSlurmArray(const std::string& configPath, const RunOptions& run, const
     std::string referenceJob;
     if (references) {
         const std::string script = (fs::path(p.slurmDir) / ("references-" + std::to_string(k) + ".sbatch")).string();
-        std::string s = header(p, slurm, "the references the array's tasks are judged against");
-        s += "#SBATCH --output=" + logs + "/%j.out\n\n";
-        s += "exec " + runLine(p, run, " --references-only") + "\n";
+        const std::vector<std::string> options = jobOptions(p, slurm, "%j.out", false);
+        std::string s = header(p, "the references the array's tasks are judged against", options);
+        s += "\nexec " + runLine(p, run, " --references-only") + "\n";
         writeFileAtomic(script, s);
-        referenceJob = submit({}, script);
+        referenceJob = submit(options, script);
         appendRecord(p.slurmDir, referenceJob + "\t-\t-\treferences");
         arrayOptions = {"--dependency=afterok:" + referenceJob, "--kill-on-invalid-dep=yes"};
     }
 
     const std::string script = (fs::path(p.slurmDir) / ("submit-" + std::to_string(k) + ".sbatch")).string();
-    std::string s = header(p, slurm, "one array element per unfinished task (" + std::to_string(unfinished.size()) +
-                                         " of " + std::to_string(config.tasks.size()) + ")");
-    s += "#SBATCH --array=" + arraySpec(unfinished.size(), slurm.maxParallel) + "\n";
-    s += "#SBATCH --output=" + logs + "/%A_%a.out\n\n";
-    s += "# Element -> task index; each element is an ordinary slice run: it skips a finished task and\n"
+    std::vector<std::string> options = jobOptions(p, slurm, "%A_%a.out", true);
+    options.push_back("--array=" + arraySpec(unfinished.size(), slurm.maxParallel));
+    options.insert(options.end(), arrayOptions.begin(), arrayOptions.end());
+    std::string s = header(p, "one array element per unfinished task (" + std::to_string(unfinished.size()) + " of " +
+                                  std::to_string(config.tasks.size()) + ")", options);
+    s += "\n# Element -> task index; each element is an ordinary slice run: it skips a finished task and\n"
          "# redoes a half-written one, so resubmitting is always safe.\ntasks=(";
     for (std::size_t i = 0; i < unfinished.size(); ++i) s += (i ? " " : "") + std::to_string(unfinished[i].index);
     s += ")\ntask=${tasks[$SLURM_ARRAY_TASK_ID]}\n";
@@ -195,8 +220,11 @@ int submitSlurmArray(const std::string& configPath, const RunOptions& run, const
     writeFileAtomic(script, s);
     std::string job;
     try {
-        job = submit(arrayOptions, script);
+        job = submit(options, script);
     } catch (const Error& e) {
+        // The reference job would otherwise stay queued with nothing waiting for it, and its
+        // name would refuse every later submission until it ends.
+        if (!referenceJob.empty()) runCommand({"scancel", referenceJob});
         if (unfinished.size() > 1000) {
             throw Error(std::string(e.what()) + " (" + std::to_string(unfinished.size()) +
                         " elements: more than a cluster's MaxArraySize allows? see `scontrol show config`)");
@@ -237,6 +265,13 @@ int collectSlurmArray(const std::string& configPath, const RunOptions& run) {
     std::printf("%s: %zu of %zu tasks finished; %s/results.csv rewritten\n", config.name.c_str(),
                 config.tasks.size() - unfinished.size(), config.tasks.size(), p.outDir.c_str());
     const std::map<std::string, std::string> logs = latestLogs(p.slurmDir);
+    std::vector<const Task*> all;
+    for (const Task& t : config.tasks) all.push_back(&t);
+    if (const auto ref = logs.find("references");
+        ref != logs.end() && !unfinished.empty() && ReferenceCache(config, p.outDir).toRender(all) > 0) {
+        // The array waits for the reference job; without its references no element ran.
+        std::printf("  references not rendered yet (the array waits for them): see %s\n", ref->second.c_str());
+    }
     for (const UnfinishedTask& u : unfinished) {
         const auto log = logs.find(u.id);
         const std::string where = log == logs.end() ? "" : " (log: " + log->second + ")";

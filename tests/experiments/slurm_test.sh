@@ -28,7 +28,7 @@ wait_queue() {
 "$bl" run "$config" --out "$results" --slurm --max-parallel 2 >"$out/submit1.txt" 2>&1 || { cat "$out/submit1.txt"; fail "first submission"; }
 cat "$out/submit1.txt"
 grep -q "submitted job [0-9]*, 6 of 6 tasks (array 0-5%2), after reference job" "$out/submit1.txt" || fail "expected an array of 6 after a reference job"
-name=$(sed -n 's/^#SBATCH --job-name=//p' "$results/slurm/submit-1.sbatch")
+name=$(grep -o "'--job-name=[^']*'" "$results/slurm/submit-1.sbatch" | sed "s/'--job-name=//; s/'//")
 [[ -n "$name" ]] || fail "no job name in the array script"
 
 # While the array is in the queue, the same command submits nothing.
