@@ -217,6 +217,27 @@ PYBIND11_MODULE(bundlelab, m) {
     }, "Every mode with its parameters (name, default, unit, help, min, max, choices).");
 
     m.def(
+        "plan",
+        [](const Scene& scene, const std::string& mode, const py::dict& settings) {
+            std::vector<std::string> assignments;
+            for (const auto& [key, value] : settings) assignments.push_back(settingText(key) + "=" + settingText(value));
+            py::list out;
+            for (const PlannedPass& p : createMode(mode, assignments)->plan(scene)) {
+                py::dict d;
+                d["id"] = p.id;
+                d["name"] = p.name;
+                d["runs"] = p.runs;
+                d["code"] = p.code;
+                d["reason"] = p.reason;
+                d["light_left_out"] = p.lightLeftOut;
+                out.append(d);
+            }
+            return out;
+        },
+        py::arg("scene"), py::arg("mode"), py::arg("settings") = py::dict(),
+        "A mode's pass plan for a scene, as `bundlelab plan`: dicts of id, name, runs, code, reason, light_left_out.");
+
+    m.def(
         "run",
         [](const std::string& config, std::optional<std::string> out, int jobs) {
             RunOptions options;

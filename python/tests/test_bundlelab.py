@@ -63,3 +63,18 @@ def test_errors_are_exceptions_with_the_clis_messages():
         bundlelab.render(scene, "multibounce", settings={"bundle_count": 0}, iterations=1)
     with pytest.raises(RuntimeError, match="unknown mode|no mode"):
         bundlelab.render(scene, "no-such-mode", iterations=1)
+
+
+def test_plan_is_the_clis_plan_as_data():
+    scene = bundlelab.load_scene(os.path.join(ROOT, "data", "cornell-box", "cornell.toml"))
+    plan = {p["id"]: p for p in bundlelab.plan(scene, "raster")}
+    assert plan["light-shadow-cubes"]["runs"] is False
+    assert plan["light-shadow-cubes"]["code"] == "no-point-or-spot-lights"
+    assert plan["emitter-points"]["runs"] is True
+    off = {p["id"]: p for p in bundlelab.plan(scene, "raster", {"emitter_points": 0})}
+    assert off["emitter-points"]["code"] == "emitter-points-0" and off["emitter-points"]["light_left_out"]
+    binary = os.environ.get("BL_BUNDLELAB", os.path.join(ROOT, "build", "bundlelab"))
+    cli = subprocess.run([binary, "plan", scene.path, "--mode", "raster"], capture_output=True, text=True,
+                         check=True).stdout
+    for p in plan.values():
+        assert f"[{p['id']}: {p['code']}]" in cli
