@@ -33,7 +33,7 @@ struct BenchOptions {
     std::uint64_t synthetic = 0;
     std::string json;
     std::string device;
-    std::string backend = "raster";
+    std::string backend = "auto"; // the modes' rule: chooseBundleBackend
 };
 
 // A height field of `triangles` triangles over [-1, 1]^2: a stand-in for a dense scan.
@@ -78,12 +78,13 @@ int runBench(const BenchOptions& o) {
     gpu::GpuScene gpuScene(ctx, scene);
     BundleBuilderOptions options;
     options.listStatistics = true;
-    options.backend = o.backend == "compute" ? BundleBackend::Compute : BundleBackend::Raster;
+    options.backend = chooseBundleBackend(ctx, o.backend);
+    const std::string backendName = options.backend == BundleBackend::Compute ? "compute" : "raster";
     BundleBuilder builder(ctx, gpuScene, options);
     DirectionSampler sampler(DirectionSequence::Halton, 0);
     const Bounds b = scene.bounds();
     std::printf("device: %s\nscene: %s, %zu triangles, build backend %s, subgroup allocation %s, exact depths %s\n",
-                ctx.info().describe().c_str(), name.c_str(), scene.triangleCount(), o.backend.c_str(),
+                ctx.info().describe().c_str(), name.c_str(), scene.triangleCount(), backendName.c_str(),
                 builder.usesSubgroups() ? "yes" : "no", builder.exactDepths() ? "yes" : "no");
     std::printf("%10s %12s %10s %10s %10s %12s %8s %8s %10s\n", "resolution", "fragments", "floor ms", "build ms",
                 "walk ms", "(b+w)/floor", "mean len", "max len", "rebuilds");
@@ -91,7 +92,7 @@ int runBench(const BenchOptions& o) {
     JsonWriter w(json);
     w.beginObject().field("scene", name).field("triangles", static_cast<unsigned long long>(scene.triangleCount()));
     w.field("device", ctx.info().describe()).field("git_revision", currentRunEnvironment().gitRevision);
-    w.field("directions", o.directions).field("backend", o.backend).field("subgroup_allocation", builder.usesSubgroups());
+    w.field("directions", o.directions).field("backend", backendName).field("subgroup_allocation", builder.usesSubgroups());
     w.key("results").beginArray();
     for (std::uint32_t res : o.resolutions) {
         std::vector<double> floorMs, buildMs, walkMs, fragments, meanLength;
@@ -141,8 +142,10 @@ void addBenchCommand(CLI::App& app, Action& action) {
         ->check(CLI::Range(2ull, 100000000ull));
     cmd->add_option("--json", o->json, "also write the results as JSON");
     cmd->add_option("--device", o->device, "Vulkan device: index or name substring");
-    cmd->add_option("--backend", o->backend, "bundle build: raster (graphics pipeline) or compute (floor: raster)")
-        ->check(CLI::IsMember({"raster", "compute"}));
+    cmd->add_option("--backend", o->backend,
+                    "bundle build: auto (the modes' choice: compute on a CPU device, raster on GPUs), raster (graphics "
+                    "pipeline) or compute (floor: raster)")
+        ->check(CLI::IsMember({"auto", "raster", "compute"}));
     cmd->callback([o, &action] { action = [o] { return runBench(*o); }; });
 }
 

@@ -3,12 +3,21 @@
 #include "base/Error.h"
 #include "base/Log.h"
 #include "bundle/BundleFrame.h"
+#include "bundle/ComputeBundleRasterizer.h"
 #include "vk/Commands.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace bl {
+
+BundleBackend chooseBundleBackend(const vk::Context& ctx, const std::string& setting) {
+    if (setting == "compute") return BundleBackend::Compute;
+    if (setting == "raster") return BundleBackend::Raster;
+    if (setting != "auto") throw Error("bundle backend '" + setting + "': raster, compute or auto");
+    return ctx.info().type == "CPU" && ComputeBundleRasterizer::supported(ctx) ? BundleBackend::Compute
+                                                                               : BundleBackend::Raster;
+}
 
 namespace {
 // Headroom when splitting into tiles: each tile's predicted need is the whole frame's share, but

@@ -20,6 +20,11 @@ namespace bl {
 // shaders (ComputeBundleRasterizer: visibility bundles, no payload).
 enum class BundleBackend { Raster, Compute };
 
+// The backend a setting names: "raster", "compute", or "auto": compute where it was measured
+// faster (a CPU device, lavapipe, where it can run), raster on GPUs (experiments/gpu/README.md).
+// One rule for the modes that choose (skylight) and for `bundlelab bench bundles`.
+BundleBackend chooseBundleBackend(const vk::Context& ctx, const std::string& setting);
+
 struct BundleBuilderOptions {
     BundlePayload payload = BundlePayload::None;
     std::uint64_t initialNodes = 0;          // pool size at start (0: 4 per pixel of the first frame)

@@ -120,12 +120,7 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->gbuffer = &g->camera->gbuffer();
     BundleBuilderOptions options;
     options.memoryCapBytes = mOptions.memoryCapBytes;
-    const std::string& backend = mOptions.bundleBackend;
-    // auto: compute where it was measured faster (lavapipe), raster on GPUs (experiments/gpu/README.md).
-    const bool cpuDevice = ctx->info().type == "CPU";
-    options.backend = backend == "compute" || (backend == "auto" && cpuDevice && ComputeBundleRasterizer::supported(*ctx))
-                          ? BundleBackend::Compute
-                          : BundleBackend::Raster;
+    options.backend = chooseBundleBackend(*ctx, mOptions.bundleBackend);
     g->builder = std::make_unique<BundleBuilder>(*ctx, *g->scene, options);
     const bool depthMapVisibility = mOptions.depthMapVisibility;
     if (depthMapVisibility) {
