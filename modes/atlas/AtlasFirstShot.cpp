@@ -50,54 +50,54 @@ AtlasMode::FirstShotChoice AtlasMode::firstShotChoice(const Scene& scene) const 
 
 void AtlasMode::setUpFirstShot(const Scene& scene) {
     Gpu& g = *mGpu;
-    g.firstShot = mPlan.runs(kPassFirstShot);
-    if (!g.firstShot) {
+    g.direct.firstShot = mPlan.runs(kPassFirstShot);
+    if (!g.direct.firstShot) {
         return;
     }
     const std::uint32_t points = mOptions.emitterPoints;
     const std::uint32_t side = mOptions.emitterShadowResolution;
     mContext->requireDeviceMemory(gpu::EmitterPointPass::bytesFor(points, side) +
-                                      VkDeviceSize(g.texelCount) * shader::kAtlasSides * 2 * sizeof(glm::vec4),
+                                      VkDeviceSize(g.link.texelCount) * shader::kAtlasSides * 2 * sizeof(glm::vec4),
                                   "atlas first shot");
-    g.emitterPoints = std::make_unique<gpu::EmitterPointPass>(*mContext, *g.scene, scene, points, side);
-    const std::vector<glm::vec4> zero(std::size_t(shader::kAtlasSides) * g.texelCount);
-    g.pointDirect = vk::makeBuffer(*mContext, std::span<const glm::vec4>(zero), kStorage);
-    g.shotSum = vk::makeBuffer(*mContext, std::span<const glm::vec4>(zero), kStorage);
+    g.direct.emitterPoints = std::make_unique<gpu::EmitterPointPass>(*mContext, *g.scene, scene, points, side);
+    const std::vector<glm::vec4> zero(std::size_t(shader::kAtlasSides) * g.link.texelCount);
+    g.direct.pointDirect = vk::makeBuffer(*mContext, std::span<const glm::vec4>(zero), kStorage);
+    g.direct.shotSum = vk::makeBuffer(*mContext, std::span<const glm::vec4>(zero), kStorage);
 
     VkDevice device = mContext->device();
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    g.firstShotSetLayout = vk::makeDescriptorSetLayout(
+    g.direct.firstShotSetLayout = vk::makeDescriptorSetLayout(
         device, {{shader::kAtlasFirstShotBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                  {shader::kAtlasFirstShotBindingMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
                  {shader::kAtlasFirstShotBindingMaps2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-    g.firstShotSet = g.descriptorPool.allocate(g.firstShotSetLayout.get());
+    g.direct.firstShotSet = g.descriptorPool.allocate(g.direct.firstShotSetLayout.get());
     vk::DescriptorWriter()
-        .buffer(shader::kAtlasFirstShotBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g.emitterPoints->buffer())
-        .image(shader::kAtlasFirstShotBindingMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g.emitterPoints->maps().view(),
+        .buffer(shader::kAtlasFirstShotBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g.direct.emitterPoints->buffer())
+        .image(shader::kAtlasFirstShotBindingMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g.direct.emitterPoints->maps().view(),
                VK_IMAGE_LAYOUT_GENERAL)
-        .image(shader::kAtlasFirstShotBindingMaps2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g.emitterPoints->maps().view(),
+        .image(shader::kAtlasFirstShotBindingMaps2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g.direct.emitterPoints->maps().view(),
                VK_IMAGE_LAYOUT_GENERAL)
-        .update(device, g.firstShotSet);
-    g.firstShotPass = vk::ComputePass<shader::AtlasFirstShotPush>(device, kSpv_modes_atlas_first_shot_comp,
-                                                                  {g.firstShotSetLayout.get()});
+        .update(device, g.direct.firstShotSet);
+    g.direct.firstShotPass = vk::ComputePass<shader::AtlasFirstShotPush>(device, kSpv_modes_atlas_first_shot_comp,
+                                                                  {g.direct.firstShotSetLayout.get()});
 }
 
 void AtlasMode::recordFirstShot(VkCommandBuffer cmd, double time) {
     Gpu& g = *mGpu;
-    g.emitterPoints->record(cmd, time, &g.timer);
+    g.direct.emitterPoints->record(cmd, time, &g.timer);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     shader::AtlasFirstShotPush push{};
-    push.samples = addressOf(*mContext, g.samples);
-    push.first = addressOf(*mContext, g.firstSample);
-    push.texels = addressOf(*mContext, g.texels);
-    push.direct = addressOf(*mContext, g.directRadiance);
-    push.pointDirect = addressOf(*mContext, g.pointDirect);
-    push.shotSum = addressOf(*mContext, g.shotSum);
-    push.senders = addressOf(*mContext, g.senders);
-    push.texelCount = g.texelCount;
+    push.samples = addressOf(*mContext, g.direct.samples);
+    push.first = addressOf(*mContext, g.direct.firstSample);
+    push.texels = addressOf(*mContext, g.link.texels);
+    push.direct = addressOf(*mContext, g.direct.directRadiance);
+    push.pointDirect = addressOf(*mContext, g.direct.pointDirect);
+    push.shotSum = addressOf(*mContext, g.direct.shotSum);
+    push.senders = addressOf(*mContext, g.exchange.senders);
+    push.texelCount = g.link.texelCount;
     push.inverseShots = 1.0f / float(mIterations + 1);
     const std::uint32_t scope = g.timer.start(cmd, "first shot");
-    g.firstShotPass.dispatch(cmd, push, vk::groupCount(g.texelCount, shader::kAtlasGroupSize), {&g.firstShotSet, 1});
+    g.direct.firstShotPass.dispatch(cmd, push, vk::groupCount(g.link.texelCount, shader::kAtlasGroupSize), {&g.direct.firstShotSet, 1});
     g.timer.stop(cmd, scope);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }

@@ -12,20 +12,20 @@ namespace bl {
 void AtlasMode::recordGlossyLights(VkCommandBuffer cmd) {
     Gpu& g = *mGpu;
     shader::AtlasDirectPush push = glossyPush();
-    push.next = g.directions->sample(directionIndex(mIterations + 1)).omega;
+    push.next = g.exchange.directions->sample(directionIndex(mIterations + 1)).omega;
     push.glossy = shader::kAtlasDirectGlossy;
-    recordDirect(cmd, push, "glossy lights", g.glossyTexelCount);
+    recordDirect(cmd, push, "glossy lights", g.glossy.texelCount);
 }
 
 shader::AtlasDirectPush AtlasMode::glossyPush() const {
     const Gpu& g = *mGpu;
     shader::AtlasDirectPush push = directPush();
-    push.received = atlasmode::addressOf(*mContext, g.received);
-    push.materials = atlasmode::addressOf(*mContext, g.materials);
-    push.touched = atlasmode::addressOf(*mContext, g.touched);
-    push.glossyTexels = atlasmode::addressOf(*mContext, g.glossyTexels);
-    push.lightCache = atlasmode::addressOf(*mContext, g.lightCache);
-    push.glossyCount = g.glossyTexelCount;
+    push.received = atlasmode::addressOf(*mContext, g.exchange.received);
+    push.materials = atlasmode::addressOf(*mContext, g.glossy.materials);
+    push.touched = atlasmode::addressOf(*mContext, g.exchange.touched);
+    push.glossyTexels = atlasmode::addressOf(*mContext, g.glossy.texels);
+    push.lightCache = atlasmode::addressOf(*mContext, g.glossy.lightCache);
+    push.glossyCount = g.glossy.texelCount;
     return push;
 }
 
@@ -34,24 +34,24 @@ shader::AtlasDirectPush AtlasMode::glossyPush() const {
 // invocation per pixel.
 void AtlasMode::recordGather(VkCommandBuffer cmd, double weight) {
     Gpu& g = *mGpu;
-    const gpu::CameraSample sample = g.camera->sample(mIterations, true, mTime, mSeed);
-    g.camera->record(cmd, sample, &g.timer);
+    const gpu::CameraSample sample = g.view.camera->sample(mIterations, true, mTime, mSeed);
+    g.view.camera->record(cmd, sample, &g.timer);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     shader::AtlasGatherPush push{};
-    push.pool = g.pool->view();
-    push.gatheredIndirect = g.split ? atlasmode::addressOf(*mContext, g.gatheredIndirect) : glm::uvec2(0u);
-    push.triangles = atlasmode::addressOf(*mContext, g.triangles);
-    push.gathered = atlasmode::addressOf(*mContext, g.gathered);
-    push.direction = atlasmode::addressOf(*mContext, g.direction);
-    push.width = g.camera->width();
-    push.height = g.camera->height();
-    push.atlasWidth = static_cast<std::uint32_t>(g.atlas.maps.width);
-    push.atlasHeight = static_cast<std::uint32_t>(g.atlas.maps.height);
+    push.pool = g.exchange.pool->view();
+    push.gatheredIndirect = g.exchange.split ? atlasmode::addressOf(*mContext, g.glossy.gatheredIndirect) : glm::uvec2(0u);
+    push.triangles = atlasmode::addressOf(*mContext, g.link.triangles);
+    push.gathered = atlasmode::addressOf(*mContext, g.glossy.gathered);
+    push.direction = atlasmode::addressOf(*mContext, g.exchange.direction);
+    push.width = g.view.camera->width();
+    push.height = g.view.camera->height();
+    push.atlasWidth = static_cast<std::uint32_t>(g.link.atlas.maps.width);
+    push.atlasHeight = static_cast<std::uint32_t>(g.link.atlas.maps.height);
     push.weight = float(weight);
     push.clear = mTotalWeight == 0.0 ? 1u : 0u;
     const std::uint32_t scope = g.timer.start(cmd, "glossy gather");
-    const VkDescriptorSet set = g.camera->set();
-    g.gatherPass.dispatch(cmd, push,
+    const VkDescriptorSet set = g.view.camera->set();
+    g.glossy.gatherPass.dispatch(cmd, push,
                           {vk::groupCount(push.width, shader::kAtlasViewGroupSize),
                            vk::groupCount(push.height, shader::kAtlasViewGroupSize), 1},
                           {&set, 1});
@@ -64,14 +64,14 @@ void AtlasMode::recordHighlight(VkCommandBuffer cmd) {
     Gpu& g = *mGpu;
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     shader::AtlasHighlightPush push{};
-    push.highlight = atlasmode::addressOf(*mContext, g.highlight);
-    push.width = g.camera->width();
-    push.height = g.camera->height();
-    push.lightCount = g.shadows->lightCount();
-    push.shadowResolution = g.shadows->resolution();
+    push.highlight = atlasmode::addressOf(*mContext, g.glossy.highlight);
+    push.width = g.view.camera->width();
+    push.height = g.view.camera->height();
+    push.lightCount = g.direct.shadows->lightCount();
+    push.shadowResolution = g.direct.shadows->resolution();
     const std::uint32_t scope = g.timer.start(cmd, "glossy highlight");
-    const VkDescriptorSet sets[] = {g.camera->set(), g.directSet};
-    g.highlightPass.dispatch(cmd, push,
+    const VkDescriptorSet sets[] = {g.view.camera->set(), g.direct.directSet};
+    g.glossy.highlightPass.dispatch(cmd, push,
                              {vk::groupCount(push.width, shader::kAtlasViewGroupSize),
                               vk::groupCount(push.height, shader::kAtlasViewGroupSize), 1},
                              sets);

@@ -1,4 +1,4 @@
-// Mode atlas's device state, shared by the files of the mode (AtlasMode.cpp: scene set-up, one
+// Mode atlas's device state in parts, one per idea, each worked on by its file (AtlasMode.cpp: scene set-up, one
 // direction's build, exchange and update; AtlasResolve.cpp: the camera view; AtlasDirect.cpp:
 // point/spot lights into the direct atlas; AtlasGlossy.cpp: the glossy passes).
 #pragma once
@@ -28,46 +28,52 @@ inline constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BI
                                               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
 } // namespace atlasmode
 
-struct AtlasMode::Gpu {
+// The parts of the state, one per idea of the method; each file of the mode works on its part
+// (and reads the link and the shared pieces).
+
+// The atlas and its link to the scene ([HHGM10] §4): texels, charts, the triangle -> texel tables.
+struct AtlasLinkState {
     atlas::Atlas atlas;
     atlasmode::AtlasTables tables;
-    std::unique_ptr<gpu::GpuScene> scene;
-    std::unique_ptr<gpu::CameraPass> camera;
-    std::unique_ptr<atlasmode::AtlasViewPass> view;
+    atlas::AtlasLink link;
+    std::uint32_t texelCount = 0;
+    vk::Buffer texels, triangles, charts;
+};
+
+// The radiance exchange (AtlasMode.cpp): one direction's bundle, the exchange along its lists and
+// the update of the received sums ([HHGM10] Eq. 3, §5.1-5.2).
+struct AtlasExchangeState {
     std::unique_ptr<BundlePool> pool;
     std::unique_ptr<DirectionSampler> directions;
     std::unique_ptr<DirectionOrder> order; // the shuffled order (glossy transfer), with `directions`
     EnvironmentLight environment;
     std::unique_ptr<EnvironmentLight> importance; // luminance-sampled, for directions=importance
-    std::unique_ptr<gpu::ShadowCubePass> shadows; // only with point or spot lights
-    vk::Buffer texels, triangles, charts, sender, received, sums, directRadiance, settled;
-    vk::Buffer samples, firstSample; // TexelSamples of the direct pass (with lights only)
+    vk::Buffer sender, received, sums, settled;
     vk::Buffer direction; // AtlasDirection, host-written before each direction's submission
     // The sides each direction touched (AtlasTouched, the update's indirect dispatch) and the
     // interleaved transfer's sender records (AtlasSenderRecord; `sender` is bounce's).
     vk::Buffer touched, senders;
-    // delay_indirect > 0: the multi-bounce channel's received words, sums and gather sums.
+    // delay_indirect > 0: the multi-bounce channel's received words and sums.
     bool split = false;
-    vk::Buffer receivedIndirect, sumsIndirect, gatheredIndirect;
-    // Glossy transfer with point/spot lights: (texel, first record) per glossy texel and the
-    // lights' cached light at their samples (AtlasLightRecord).
-    vk::Buffer glossyTexels, lightCache;
-    std::uint32_t glossyTexelCount = 0;
-    // Glossy materials (interleaved transfer only): the glossy transfer atlas rides in `received`;
-    // the final gather's per-pixel sums and the view sample's point-light highlight per pixel.
-    bool glossy = false, glossyTransfer = false, shuffleDirections = false;
-    vk::Buffer materials, gathered, highlight;
-    // The compute passes (shaders/modes/atlas/*.comp.glsl); direct, gather and highlight only where
-    // the scene needs them (empty otherwise).
+    vk::Buffer receivedIndirect, sumsIndirect;
     vk::ComputePass<shader::AtlasExchangePush> exchangePass;
     vk::ComputePass<shader::AtlasUpdatePush> updatePass;
-    vk::ComputePass<shader::AtlasShadePush> shadePass;
+    // Host wall clock of each direction's two submissions, beside the GPU timestamps: build + sort,
+    // exchange + update (the bench's ms per direction include host submission and waits).
+    PassTime wallBuild{"build + sort (wall)"}, wallExchange{"exchange + update (wall)"};
+    std::uint64_t nodesLast = 0;
+    std::uint64_t rebuilds = 0;
+};
+
+// The direct atlas (AtlasDirect.cpp: point/spot lights, [HHGM10] §6.5) and the first shot
+// (AtlasFirstShot.cpp: area emitters by emitter points, the exchange then carrying reflected light).
+struct AtlasDirectState {
+    std::unique_ptr<gpu::ShadowCubePass> shadows; // only with point or spot lights
+    vk::Buffer samples, firstSample;               // TexelSamples of the direct pass (with lights only)
+    vk::Buffer directRadiance;
     vk::ComputePass<shader::AtlasDirectPush> directPass;
-    vk::ComputePass<shader::AtlasGatherPush> gatherPass;
-    vk::ComputePass<shader::AtlasHighlightPush> highlightPass;
-    vk::DescriptorSetLayout viewSetLayout, directSetLayout;
-    vk::DescriptorPool descriptorPool;
-    VkDescriptorSet viewSet = VK_NULL_HANDLE, directSet = VK_NULL_HANDLE;
+    vk::DescriptorSetLayout directSetLayout;
+    VkDescriptorSet directSet = VK_NULL_HANDLE;
     // first_shot: the emitter points, the point/spot lights' part of the direct atlas kept apart
     // and the running sum of the shots (vec4 per texel side each).
     bool firstShot = false;
@@ -76,15 +82,42 @@ struct AtlasMode::Gpu {
     vk::DescriptorSetLayout firstShotSetLayout;
     VkDescriptorSet firstShotSet = VK_NULL_HANDLE;
     vk::ComputePass<shader::AtlasFirstShotPush> firstShotPass;
-    atlas::AtlasLink link;
+};
+
+// The glossy passes (AtlasGlossy.cpp, [HHGM10] §5.3-5.4): the transfer atlas rides in the
+// exchange's `received`; the final gather's per-pixel sums and the view sample's point-light
+// highlight per pixel; interleaved transfer only.
+struct AtlasGlossyState {
+    bool gather = false, transfer = false, shuffleDirections = false;
+    // Glossy transfer with point/spot lights: (texel, first record) per glossy texel and the lights'
+    // cached light at their samples (AtlasLightRecord).
+    vk::Buffer texels, lightCache;
+    std::uint32_t texelCount = 0;
+    vk::Buffer materials, gathered, gatheredIndirect, highlight;
+    vk::ComputePass<shader::AtlasGatherPush> gatherPass;
+    vk::ComputePass<shader::AtlasHighlightPush> highlightPass;
+};
+
+// The camera view (AtlasResolve.cpp): per view sample the G-buffer and the atlas lookup raster, then
+// the shade pass.
+struct AtlasViewState {
+    std::unique_ptr<gpu::CameraPass> camera;
+    std::unique_ptr<atlasmode::AtlasViewPass> lookup;
+    vk::ComputePass<shader::AtlasShadePush> shadePass;
+    vk::DescriptorSetLayout setLayout;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+};
+
+struct AtlasMode::Gpu {
+    std::unique_ptr<gpu::GpuScene> scene;
+    AtlasLinkState link;
+    AtlasExchangeState exchange;
+    AtlasDirectState direct;
+    AtlasGlossyState glossy;
+    AtlasViewState view;
+    vk::DescriptorPool descriptorPool; // the view's, the direct pass's and the first shot's sets
     vk::GpuTimer timer;
     Bounds bounds;
-    std::uint32_t texelCount = 0;
-    // Host wall clock of each direction's two submissions, beside the GPU timestamps: build + sort,
-    // exchange + update (the bench's ms per direction include host submission and waits).
-    PassTime wallBuild{"build + sort (wall)"}, wallExchange{"exchange + update (wall)"};
-    std::uint64_t nodesLast = 0;
-    std::uint64_t rebuilds = 0;
 };
 
 } // namespace bl

@@ -109,33 +109,33 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
 
     atlas::AtlasOptions atlasOptions;
     atlasOptions.size = static_cast<int>(mOptions.atlasResolution);
-    g->atlas = atlas::buildAtlas(scene, atlasOptions);
+    g->link.atlas = atlas::buildAtlas(scene, atlasOptions);
     // The generator leaves out triangles that found no texel and no room for a chart of their own
     // (sub-texel triangles of large scenes); the mode needs every triangle in the atlas.
     std::size_t inAtlas = 0;
-    for (const std::vector<std::uint32_t>& sources : g->atlas.triangleSources) inAtlas += sources.size();
+    for (const std::vector<std::uint32_t>& sources : g->link.atlas.triangleSources) inAtlas += sources.size();
     if (inAtlas != scene.triangleCount()) {
         throw Error("atlas: " + std::to_string(scene.triangleCount() - inAtlas) + " of " +
                     std::to_string(scene.triangleCount()) + " triangles found no room in a " +
-                    std::to_string(atlasOptions.size) + "^2 atlas (" + std::to_string(g->atlas.stats.charts) +
+                    std::to_string(atlasOptions.size) + "^2 atlas (" + std::to_string(g->link.atlas.stats.charts) +
                     " charts, texels too coarse for them); raise atlas_resolution");
     }
-    g->link = atlas::linkAtlas(scene, g->atlas);
-    const atlas::AtlasLink& link = g->link;
-    g->tables = atlasmode::buildAtlasTables(g->atlas, link);
-    g->texelCount = static_cast<std::uint32_t>(g->tables.texels.size());
-    log::info("atlas: " + std::to_string(g->atlas.maps.width) + "x" + std::to_string(g->atlas.maps.height) + " x " +
-              std::to_string(g->atlas.maps.pages) + " page(s), " + std::to_string(g->atlas.stats.charts) +
-              " charts, utilization " + std::to_string(g->atlas.stats.utilization));
-    if (g->atlas.stats.isolatedTriangles > 0) {
-        log::warn("atlas: " + std::to_string(g->atlas.stats.isolatedTriangles) +
+    g->link.link = atlas::linkAtlas(scene, g->link.atlas);
+    const atlas::AtlasLink& link = g->link.link;
+    g->link.tables = atlasmode::buildAtlasTables(g->link.atlas, link);
+    g->link.texelCount = static_cast<std::uint32_t>(g->link.tables.texels.size());
+    log::info("atlas: " + std::to_string(g->link.atlas.maps.width) + "x" + std::to_string(g->link.atlas.maps.height) + " x " +
+              std::to_string(g->link.atlas.maps.pages) + " page(s), " + std::to_string(g->link.atlas.stats.charts) +
+              " charts, utilization " + std::to_string(g->link.atlas.stats.utilization));
+    if (g->link.atlas.stats.isolatedTriangles > 0) {
+        log::warn("atlas: " + std::to_string(g->link.atlas.stats.isolatedTriangles) +
                   " triangles are too thin for a texel of their own at atlas_resolution " +
                   std::to_string(atlasOptions.size) + " (slivers, or triangles crowded within a texel) and got " +
-                  "charts of their own: " + std::to_string(g->atlas.maps.pages) +
+                  "charts of their own: " + std::to_string(g->link.atlas.maps.pages) +
                   " page(s); their texels see few hits each (noisy, not biased). Raise atlas_resolution or remesh");
     }
-    if (g->tables.degenerateTriangles > 0) {
-        log::warn("atlas: " + std::to_string(g->tables.degenerateTriangles) +
+    if (g->link.tables.degenerateTriangles > 0) {
+        log::warn("atlas: " + std::to_string(g->link.tables.degenerateTriangles) +
                   " triangles have no atlas area; their hits exchange nothing");
     }
     const auto shadowSide = static_cast<VkDeviceSize>(mOptions.shadowResolution);
@@ -143,25 +143,25 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     const VkDeviceSize lightBytes = scene.lights.empty()
                                         ? 0
                                         : shadowSide * shadowSide * 8 * 6 * scene.lights.size() +
-                                              VkDeviceSize(g->texelCount) * (lightSamples * lightSamples * 32 + 4);
-    g->split = mPlan.runs(kPassDelayedIndirect);
-    ctx->requireDeviceMemory(VkDeviceSize(g->texelCount) * (kBytesPerTexel + (g->split ? kSplitBytesPerTexel : 0)) +
+                                              VkDeviceSize(g->link.texelCount) * (lightSamples * lightSamples * 32 + 4);
+    g->exchange.split = mPlan.runs(kPassDelayedIndirect);
+    ctx->requireDeviceMemory(VkDeviceSize(g->link.texelCount) * (kBytesPerTexel + (g->exchange.split ? kSplitBytesPerTexel : 0)) +
                                  lightBytes +
                                  VkDeviceSize(width) * height *
                                      (gpu::CameraPass::bytesPerPixel(shader::kAtlasAccumLayers) + 16 + 4 +
                                       (scene.features().glossy ? 32 : 0)), // glossy gather + highlight
-                             "atlas with " + std::to_string(g->texelCount) + " texels");
+                             "atlas with " + std::to_string(g->link.texelCount) + " texels");
 
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene, &link);
-    g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kAtlasAccumLayers);
-    g->view = std::make_unique<atlasmode::AtlasViewPass>(*ctx, *g->scene, width, height);
+    g->view.camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kAtlasAccumLayers);
+    g->view.lookup = std::make_unique<atlasmode::AtlasViewPass>(*ctx, *g->scene, width, height);
     g->bounds = scene.bounds();
-    g->environment = EnvironmentLight(scene.environment, false);
+    g->exchange.environment = EnvironmentLight(scene.environment, false);
     if (mOptions.directions == DirectionSequence::Importance) {
         if (!scene.environment.present) {
             throw Error("atlas: directions=importance needs an environment in the scene");
         }
-        g->importance = std::make_unique<EnvironmentLight>(scene.environment, true);
+        g->exchange.importance = std::make_unique<EnvironmentLight>(scene.environment, true);
     }
 
     // One grid of R + 1 pixels a side: each direction's grid is shifted by a random sub-pixel
@@ -174,102 +174,102 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     options.sortable = true;
     options.initialNodes = kInitialNodesPerPixel * options.slotPixels;
     options.memoryCapBytes = mOptions.memoryCapBytes;
-    g->pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
+    g->exchange.pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
     // Build, sort, exchange, update, and per view sample G-buffer, view raster, shade.
     constexpr std::uint32_t kScopes = 24;
     g->timer = vk::GpuTimer(*ctx, kScopes);
 
-    const std::size_t texels = g->texelCount;
-    g->texels = vk::makeBuffer(*ctx, std::span<const shader::AtlasTexel>(g->tables.texels), kStorage);
-    g->triangles = vk::makeBuffer(*ctx, std::span<const shader::AtlasTriangle>(g->tables.triangles), kStorage);
-    g->charts = vk::makeBuffer(*ctx, std::span<const std::int32_t>(g->tables.charts), kStorage);
+    const std::size_t texels = g->link.texelCount;
+    g->link.texels = vk::makeBuffer(*ctx, std::span<const shader::AtlasTexel>(g->link.tables.texels), kStorage);
+    g->link.triangles = vk::makeBuffer(*ctx, std::span<const shader::AtlasTriangle>(g->link.tables.triangles), kStorage);
+    g->link.charts = vk::makeBuffer(*ctx, std::span<const std::int32_t>(g->link.tables.charts), kStorage);
     // Bounce: the sender starts as the emission (front sides); interleaved transfer keeps sender
     // records instead (written before the first direction). Sums and received start at zero.
     std::vector<glm::vec4> sender(mOptions.bounce ? shader::kAtlasSides * texels : 0, glm::vec4(0.0f));
     for (std::size_t t = 0; t < sender.size() / shader::kAtlasSides; ++t) {
-        sender[shader::kAtlasSides * t + shader::kAtlasFront] = glm::vec4(g->tables.texels[t].emission, 0.0f);
+        sender[shader::kAtlasSides * t + shader::kAtlasFront] = glm::vec4(g->link.tables.texels[t].emission, 0.0f);
     }
-    g->sender = vk::makeBuffer(*ctx, std::span<const glm::vec4>(sender), kStorage);
-    g->senders = vk::Buffer(*ctx, (mOptions.bounce ? 1 : shader::kAtlasSides * texels) * sizeof(shader::AtlasSenderRecord),
+    g->exchange.sender = vk::makeBuffer(*ctx, std::span<const glm::vec4>(sender), kStorage);
+    g->exchange.senders = vk::Buffer(*ctx, (mOptions.bounce ? 1 : shader::kAtlasSides * texels) * sizeof(shader::AtlasSenderRecord),
                             kStorage, vk::MemoryUse::Device);
-    g->received = vk::makeBuffer(*ctx,
+    g->exchange.received = vk::makeBuffer(*ctx,
                                  std::span<const glm::vec4>(std::vector<glm::vec4>(
                                      shader::kAtlasSides * texels * shader::kAtlasReceivedWords / 4)),
                                  kStorage);
-    g->directRadiance = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(shader::kAtlasSides * texels)),
+    g->direct.directRadiance = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(shader::kAtlasSides * texels)),
                                kStorage);
-    g->settled = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(shader::kAtlasSides * texels)),
+    g->exchange.settled = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(shader::kAtlasSides * texels)),
                                 kStorage);
-    g->sums = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(2 * shader::kAtlasSides * texels)),
+    g->exchange.sums = vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(2 * shader::kAtlasSides * texels)),
                              kStorage);
     const std::vector<glm::vec4> zeroSlots(shader::kAtlasSides * texels);
     std::vector<std::uint32_t> touched(shader::kAtlasTouchedHeader + shader::kAtlasSides * texels, 0u);
     touched[2] = touched[3] = 1u; // the update's indirect dispatch is (groups, 1, 1)
-    g->touched = vk::makeBuffer(*ctx, std::span<const std::uint32_t>(touched), kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
-    if (g->split) {
-        g->receivedIndirect = vk::makeBuffer(*ctx, std::span<const glm::vec4>(zeroSlots), kStorage);
-        g->sumsIndirect =
+    g->exchange.touched = vk::makeBuffer(*ctx, std::span<const std::uint32_t>(touched), kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+    if (g->exchange.split) {
+        g->exchange.receivedIndirect = vk::makeBuffer(*ctx, std::span<const glm::vec4>(zeroSlots), kStorage);
+        g->exchange.sumsIndirect =
             vk::makeBuffer(*ctx, std::span<const glm::vec4>(std::vector<glm::vec4>(2 * zeroSlots.size())), kStorage);
     }
-    g->direction = vk::Buffer(*ctx, sizeof(shader::AtlasDirection),
+    g->exchange.direction = vk::Buffer(*ctx, sizeof(shader::AtlasDirection),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
                               vk::MemoryUse::Upload);
 
     VkDevice device = ctx->device();
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    g->exchangePass = vk::ComputePass<shader::AtlasExchangePush>(device, kSpv_modes_atlas_exchange_comp);
-    g->updatePass = vk::ComputePass<shader::AtlasUpdatePush>(device, kSpv_modes_atlas_update_comp);
-    g->viewSetLayout = vk::makeDescriptorSetLayout(device, {{shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
+    g->exchange.exchangePass = vk::ComputePass<shader::AtlasExchangePush>(device, kSpv_modes_atlas_exchange_comp);
+    g->exchange.updatePass = vk::ComputePass<shader::AtlasUpdatePush>(device, kSpv_modes_atlas_update_comp);
+    g->view.setLayout = vk::makeDescriptorSetLayout(device, {{shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
     // Three sets (view, point lights, first shot); the most of one type is the storage images: the
     // view, the point lights' shadow cubes and the first shot's two bindings of its cubes.
     g->descriptorPool = vk::DescriptorPool(device, 3, 4);
-    g->viewSet = g->descriptorPool.allocate(g->viewSetLayout.get());
+    g->view.set = g->descriptorPool.allocate(g->view.setLayout.get());
     if (!scene.lights.empty()) {
-        g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
-        g->directSetLayout = vk::makeDescriptorSetLayout(
+        g->direct.shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
+        g->direct.directSetLayout = vk::makeDescriptorSetLayout(
             device, {{shader::kAtlasDirectBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
                      {shader::kAtlasDirectBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-        g->directSet = g->descriptorPool.allocate(g->directSetLayout.get());
+        g->direct.directSet = g->descriptorPool.allocate(g->direct.directSetLayout.get());
         vk::DescriptorWriter()
             .buffer(shader::kAtlasDirectBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
-            .image(shader::kAtlasDirectBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->shadows->maps().view(),
+            .image(shader::kAtlasDirectBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->direct.shadows->maps().view(),
                    VK_IMAGE_LAYOUT_GENERAL)
-            .update(device, g->directSet);
-        g->directPass =
-            vk::ComputePass<shader::AtlasDirectPush>(device, kSpv_modes_atlas_direct_comp, {g->directSetLayout.get()});
+            .update(device, g->direct.directSet);
+        g->direct.directPass =
+            vk::ComputePass<shader::AtlasDirectPush>(device, kSpv_modes_atlas_direct_comp, {g->direct.directSetLayout.get()});
     }
     std::vector<shader::GpuMaterial> materials;
     for (const Material& m : scene.materials) materials.push_back(toGpuMaterial(m));
     if (materials.empty()) materials.emplace_back();
-    g->materials = vk::makeBuffer(*ctx, std::span<const shader::GpuMaterial>(materials), kStorage);
-    g->glossy = mPlan.runs(kPassGlossyGather);
-    g->glossyTransfer = mPlan.runs(kPassGlossyTransfer);
+    g->glossy.materials = vk::makeBuffer(*ctx, std::span<const shader::GpuMaterial>(materials), kStorage);
+    g->glossy.gather = mPlan.runs(kPassGlossyGather);
+    g->glossy.transfer = mPlan.runs(kPassGlossyTransfer);
     // The shuffled direction order only where a mesh carries a glossy lobe: with none hit, the
     // transfer adds nothing and the directions stay those of the diffuse mode.
     const auto glossyMesh = [&](const Mesh& m) {
         return m.material < scene.materials.size() && scene.materials[m.material].glossy();
     };
-    g->shuffleDirections =
-        g->glossyTransfer && std::any_of(scene.meshes.begin(), scene.meshes.end(), glossyMesh);
-    if (g->glossy) {
+    g->glossy.shuffleDirections =
+        g->glossy.transfer && std::any_of(scene.meshes.begin(), scene.meshes.end(), glossyMesh);
+    if (g->glossy.gather) {
         const std::vector<glm::vec4> pixels(std::size_t(width) * height);
-        g->gathered = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
-        if (g->split) {
-            g->gatheredIndirect = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
+        g->glossy.gathered = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
+        if (g->exchange.split) {
+            g->glossy.gatheredIndirect = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
         }
-        g->gatherPass =
-            vk::ComputePass<shader::AtlasGatherPush>(device, kSpv_modes_atlas_gather_comp, {g->camera->setLayout()});
-        if (g->shadows) {
-            g->highlight = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
-            g->highlightPass = vk::ComputePass<shader::AtlasHighlightPush>(
-                device, kSpv_modes_atlas_highlight_comp, {g->camera->setLayout(), g->directSetLayout.get()});
+        g->glossy.gatherPass =
+            vk::ComputePass<shader::AtlasGatherPush>(device, kSpv_modes_atlas_gather_comp, {g->view.camera->setLayout()});
+        if (g->direct.shadows) {
+            g->glossy.highlight = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
+            g->glossy.highlightPass = vk::ComputePass<shader::AtlasHighlightPush>(
+                device, kSpv_modes_atlas_highlight_comp, {g->view.camera->setLayout(), g->direct.directSetLayout.get()});
         }
     }
     vk::DescriptorWriter()
-        .image(shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->view->image().view(), VK_IMAGE_LAYOUT_GENERAL)
-        .update(device, g->viewSet);
-    g->shadePass = vk::ComputePass<shader::AtlasShadePush>(device, kSpv_modes_atlas_shade_comp,
-                                                           {g->camera->setLayout(), g->viewSetLayout.get()});
+        .image(shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->view.lookup->image().view(), VK_IMAGE_LAYOUT_GENERAL)
+        .update(device, g->view.set);
+    g->view.shadePass = vk::ComputePass<shader::AtlasShadePush>(device, kSpv_modes_atlas_shade_comp,
+                                                           {g->view.camera->setLayout(), g->view.setLayout.get()});
     mGpu = std::move(g);
     setUpFirstShot(scene);
 }
@@ -279,7 +279,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
 shader::AtlasDirection AtlasMode::buildBundle(const IterationInfo& info) {
     Gpu& g = *mGpu;
     const std::uint32_t resolution = mOptions.bundleResolution;
-    const BundleDirection dir = g.directions->sample(directionIndex(mIterations));
+    const BundleDirection dir = g.exchange.directions->sample(directionIndex(mIterations));
     // A frame of R + 1 pixels of the R-pixel frame's size (radius scaled by (R + 1) / R), shifted
     // by a random sub-pixel offset in [-1/2, 1/2) pixel each way: it still covers the bounding
     // sphere, and every surface point's ray is uniformly placed within its pixel over directions
@@ -295,25 +295,25 @@ shader::AtlasDirection AtlasMode::buildBundle(const IterationInfo& info) {
     shader::AtlasDirection params{};
     // Radiance arriving from +omega at the last hit of a list, from -omega at the first.
     // Bounce-by-bounce: the environment is a source, sent in pass 1 only (later passes send reflected light).
-    const bool environment = g.environment.present() && (!mOptions.bounce || mPass == 1);
-    params.environmentForward = environment ? g.environment.radiance(frame.direction) : glm::vec3(0.0f);
-    params.environmentBackward = environment ? g.environment.radiance(-frame.direction) : glm::vec3(0.0f);
-    const float density = g.directions->hemispherePdf(frame.direction);
+    const bool environment = g.exchange.environment.present() && (!mOptions.bounce || mPass == 1);
+    params.environmentForward = environment ? g.exchange.environment.radiance(frame.direction) : glm::vec3(0.0f);
+    params.environmentBackward = environment ? g.exchange.environment.radiance(-frame.direction) : glm::vec3(0.0f);
+    const float density = g.exchange.directions->hemispherePdf(frame.direction);
     params.weight = frame.pixelSize * frame.pixelSize / (shader::kPi * density);
     params.inverseDensity = 1.0f / density;
-    params.glossy = g.glossyTransfer ? 1u : 0u;
-    params.next = g.directions->sample(directionIndex(mIterations + 1)).omega;
+    params.glossy = g.glossy.transfer ? 1u : 0u;
+    params.next = g.exchange.directions->sample(directionIndex(mIterations + 1)).omega;
 
-    g.nodesLast = buildFitting(*g.pool, {"atlas", 1, frame.width}, [&] {
-        const WallSpan wall(g.wallBuild);
+    g.exchange.nodesLast = buildFitting(*g.exchange.pool, {"atlas", 1, frame.width}, [&] {
+        const WallSpan wall(g.exchange.wallBuild);
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
-            g.pool->recordReset(cmd);
-            g.pool->recordBuild(cmd, 0, frame, BundleGeometry::triangles(info.time), &g.timer);
-            g.pool->recordSort(cmd, 0, &g.timer);
+            g.exchange.pool->recordReset(cmd);
+            g.exchange.pool->recordBuild(cmd, 0, frame, BundleGeometry::triangles(info.time), &g.timer);
+            g.exchange.pool->recordSort(cmd, 0, &g.timer);
         });
         g.timer.collect();
-    }, g.rebuilds);
+    }, g.exchange.rebuilds);
     return params;
 }
 
@@ -329,12 +329,12 @@ void AtlasMode::iterate(const IterationInfo& info) {
                     std::to_string(*mSolutionTime) + " to " + std::to_string(info.time) +
                     " s; the atlas holds one static solution: render a single scene time (--scene-time), not frames");
     }
-    if (!g.directions) {
+    if (!g.exchange.directions) {
         // The seed decorrelates runs; directions are reproducible from (settings, seed).
-        g.directions = std::make_unique<DirectionSampler>(mOptions.directions, static_cast<std::uint32_t>(info.seed),
-                                                          mOptions.strata, g.importance.get(),
+        g.exchange.directions = std::make_unique<DirectionSampler>(mOptions.directions, static_cast<std::uint32_t>(info.seed),
+                                                          mOptions.strata, g.exchange.importance.get(),
                                                           static_cast<float>(mOptions.importanceOffset));
-        g.order = std::make_unique<DirectionOrder>(mOptions.directions, mOptions.strata,
+        g.exchange.order = std::make_unique<DirectionOrder>(mOptions.directions, mOptions.strata,
                                                    static_cast<std::uint32_t>(info.seed));
     }
     mTime = info.time;
@@ -345,17 +345,17 @@ void AtlasMode::iterate(const IterationInfo& info) {
     }
     shader::AtlasDirection params = buildBundle(info);
 
-    const std::uint32_t bundlePixels = g.pool->slotPixels();
+    const std::uint32_t bundlePixels = g.exchange.pool->slotPixels();
     shader::AtlasExchangePush exchange{};
-    exchange.pool = g.pool->view();
-    exchange.texels = addressOf(*mContext, g.texels);
-    exchange.triangles = addressOf(*mContext, g.triangles);
-    exchange.received = addressOf(*mContext, g.received);
-    exchange.direction = addressOf(*mContext, g.direction);
-    exchange.materials = addressOf(*mContext, g.materials);
-    exchange.width = static_cast<std::uint32_t>(g.atlas.maps.width);
-    exchange.height = static_cast<std::uint32_t>(g.atlas.maps.height);
-    exchange.pages = static_cast<std::uint32_t>(g.atlas.maps.pages);
+    exchange.pool = g.exchange.pool->view();
+    exchange.texels = addressOf(*mContext, g.link.texels);
+    exchange.triangles = addressOf(*mContext, g.link.triangles);
+    exchange.received = addressOf(*mContext, g.exchange.received);
+    exchange.direction = addressOf(*mContext, g.exchange.direction);
+    exchange.materials = addressOf(*mContext, g.glossy.materials);
+    exchange.width = static_cast<std::uint32_t>(g.link.atlas.maps.width);
+    exchange.height = static_cast<std::uint32_t>(g.link.atlas.maps.height);
+    exchange.pages = static_cast<std::uint32_t>(g.link.atlas.maps.pages);
     // Interleaved: direction j weighs j^k. Bounce: the sender is fixed within a pass, so its
     // directions weigh the same, and the pass's last direction settles it (the last pass allowed
     // by max_segments never settles: it keeps refining). Split: the one-bounce channel's sender
@@ -364,40 +364,40 @@ void AtlasMode::iterate(const IterationInfo& info) {
     // counted from its first direction.
     const double k = mOptions.weighting;
     const std::uint32_t passDirections = mOptions.bounceDirections;
-    const double weight = mOptions.bounce || g.split ? 1.0 : std::pow(double(mIterations + 1), k);
-    const bool indirect = g.split && mIterations >= mOptions.delayIndirect;
+    const double weight = mOptions.bounce || g.exchange.split ? 1.0 : std::pow(double(mIterations + 1), k);
+    const bool indirect = g.exchange.split && mIterations >= mOptions.delayIndirect;
     const double weightIndirect = indirect ? std::pow(double(mIndirectDirections + 1), k) : 0.0;
 
     // How this direction's sender is formed: the estimate of the directions before it.
     params.texels = exchange.texels;
-    params.senders = addressOf(*mContext, g.senders);
-    params.fixedSender = addressOf(*mContext, g.sender);
-    params.touched = addressOf(*mContext, g.touched);
+    params.senders = addressOf(*mContext, g.exchange.senders);
+    params.fixedSender = addressOf(*mContext, g.exchange.sender);
+    params.touched = addressOf(*mContext, g.exchange.touched);
     params.scale = mTotalWeight > 0.0 ? float(1.0 / mTotalWeight) : 0.0f;
     params.previous = mIterations - 1u; // the first direction: ~0u is the init pass's tag, whose stored glossy transfer is zero
     params.transfer = mOptions.bounce ? shader::kAtlasTransferBounce : shader::kAtlasTransferInterleaved;
-    if (g.split) {
+    if (g.exchange.split) {
         params.split = 1u;
-        params.sumsIndirect = addressOf(*mContext, g.sumsIndirect);
-        params.receivedIndirect = addressOf(*mContext, g.receivedIndirect);
+        params.sumsIndirect = addressOf(*mContext, g.exchange.sumsIndirect);
+        params.receivedIndirect = addressOf(*mContext, g.exchange.receivedIndirect);
         params.indirectScale = mIndirectWeight > 0.0 ? float(1.0 / mIndirectWeight) : 0.0f;
         params.indirect = indirect ? 1u : 0u;
         params.weightIndirect = float(weightIndirect);
         params.clearIndirect = indirect && mIndirectWeight == 0.0 ? 1u : 0u;
     }
-    std::memcpy(g.direction.data(), &params, sizeof(params));
+    std::memcpy(g.exchange.direction.data(), &params, sizeof(params));
 
     shader::AtlasUpdatePush update{};
     update.texels = exchange.texels;
     update.sender = params.fixedSender;
     update.received = exchange.received;
-    update.sums = addressOf(*mContext, g.sums);
-    update.texelCount = g.texelCount;
+    update.sums = addressOf(*mContext, g.exchange.sums);
+    update.texelCount = g.link.texelCount;
     update.weight = float(weight);
     update.inverseTotalWeight = float(1.0 / (mTotalWeight + weight));
     update.clearSums = mTotalWeight == 0.0 ? 1u : 0u;
-    update.direct = addressOf(*mContext, g.directRadiance);
-    update.settled = addressOf(*mContext, g.settled);
+    update.direct = addressOf(*mContext, g.direct.directRadiance);
+    update.settled = addressOf(*mContext, g.exchange.settled);
     update.transfer = params.transfer;
     const bool lastPass = mOptions.maxSegments != 0 && mPass + 1 >= mOptions.maxSegments;
     update.settle = mOptions.bounce && !lastPass && std::uint32_t(mTotalWeight + weight) >= passDirections ? 1u : 0u;
@@ -410,42 +410,42 @@ void AtlasMode::iterate(const IterationInfo& info) {
     update.sumsIndirect = params.sumsIndirect;
     update.weightIndirect = float(weightIndirect);
     update.iteration = mIterations;
-    if (g.firstShot) {
-        g.emitterPoints->prepare(info.seed, mIterations, info.time);
+    if (g.direct.firstShot) {
+        g.direct.emitterPoints->prepare(info.seed, mIterations, info.time);
     }
-    std::optional<WallSpan> wall(std::in_place, g.wallExchange);
+    std::optional<WallSpan> wall(std::in_place, g.exchange.wallExchange);
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
-        const std::uint32_t slots = shader::kAtlasSides * g.texelCount;
+        const std::uint32_t slots = shader::kAtlasSides * g.link.texelCount;
         if (mIterations == 0 && !mOptions.bounce) { // the sender records' constant part, once
             shader::AtlasUpdatePush init = update;
             init.mode = shader::kAtlasUpdateInit;
-            g.updatePass.dispatch(cmd, init, vk::groupCount(slots, shader::kAtlasGroupSize));
+            g.exchange.updatePass.dispatch(cmd, init, vk::groupCount(slots, shader::kAtlasGroupSize));
         }
-        if (g.firstShot) { // after the init: the shot rewrites the records' constant part
+        if (g.direct.firstShot) { // after the init: the shot rewrites the records' constant part
             vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
             recordFirstShot(cmd, info.time);
         }
-        vkCmdFillBuffer(cmd, g.touched.get(), 0, 2 * sizeof(std::uint32_t), 0u); // count, groups
+        vkCmdFillBuffer(cmd, g.exchange.touched.get(), 0, 2 * sizeof(std::uint32_t), 0u); // count, groups
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
         std::uint32_t scope = g.timer.start(cmd, "exchange");
-        g.exchangePass.dispatch(cmd, exchange, vk::groupCount(bundlePixels, shader::kAtlasGroupSize));
+        g.exchange.exchangePass.dispatch(cmd, exchange, vk::groupCount(bundlePixels, shader::kAtlasGroupSize));
         g.timer.stop(cmd, scope);
-        if (g.glossyTransfer && g.shadows && g.glossyTexelCount > 0) {
+        if (g.glossy.transfer && g.direct.shadows && g.glossy.texelCount > 0) {
             vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
             recordGlossyLights(cmd);
         }
-        if (g.glossy) {
+        if (g.glossy.gather) {
             recordGather(cmd, weight);
         }
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT);
         scope = g.timer.start(cmd, "update");
         if (update.mode == shader::kAtlasUpdateListed) {
-            g.updatePass.dispatchIndirect(cmd, update, g.touched.get(), shader::kAtlasTouchedDispatchOffset);
+            g.exchange.updatePass.dispatchIndirect(cmd, update, g.exchange.touched.get(), shader::kAtlasTouchedDispatchOffset);
         } else {
-            g.updatePass.dispatch(cmd, update, vk::groupCount(slots, shader::kAtlasGroupSize));
+            g.exchange.updatePass.dispatch(cmd, update, vk::groupCount(slots, shader::kAtlasGroupSize));
         }
         g.timer.stop(cmd, scope);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -467,11 +467,11 @@ void AtlasMode::iterate(const IterationInfo& info) {
 
 AtlasMode::TexelRadiance AtlasMode::readTexels() const {
     const Gpu& g = sceneState(mGpu, name(), "readTexels");
-    const std::size_t slots = shader::kAtlasSides * g.texelCount;
+    const std::size_t slots = shader::kAtlasSides * g.link.texelCount;
     std::vector<glm::vec4> sums(2 * slots), settled(slots), direct(slots);
-    g.sums.download(*mContext, sums.data(), sums.size() * sizeof(glm::vec4));
-    g.settled.download(*mContext, settled.data(), settled.size() * sizeof(glm::vec4));
-    g.directRadiance.download(*mContext, direct.data(), direct.size() * sizeof(glm::vec4));
+    g.exchange.sums.download(*mContext, sums.data(), sums.size() * sizeof(glm::vec4));
+    g.exchange.settled.download(*mContext, settled.data(), settled.size() * sizeof(glm::vec4));
+    g.direct.directRadiance.download(*mContext, direct.data(), direct.size() * sizeof(glm::vec4));
     const float scale = mTotalWeight > 0.0 ? float(1.0 / mTotalWeight) : 0.0f;
     TexelRadiance out;
     out.reflected.resize(slots);
@@ -479,14 +479,14 @@ AtlasMode::TexelRadiance AtlasMode::readTexels() const {
         out.reflected[s] = glm::vec3(sums[2 * s] + sums[2 * s + 1]) * scale + glm::vec3(settled[s]) +
                            mOptions.directScale() * glm::vec3(direct[s]);
     }
-    if (g.split) { // the multi-bounce channel
-        g.sumsIndirect.download(*mContext, sums.data(), sums.size() * sizeof(glm::vec4));
+    if (g.exchange.split) { // the multi-bounce channel
+        g.exchange.sumsIndirect.download(*mContext, sums.data(), sums.size() * sizeof(glm::vec4));
         const float indirectScale = mIndirectWeight > 0.0 ? float(1.0 / mIndirectWeight) : 0.0f;
         for (std::size_t s = 0; s < slots; ++s) {
             out.reflected[s] += glm::vec3(sums[2 * s] + sums[2 * s + 1]) * indirectScale;
         }
     }
-    for (const shader::AtlasTexel& t : g.tables.texels) {
+    for (const shader::AtlasTexel& t : g.link.tables.texels) {
         out.emission.push_back(t.emission);
         out.area.push_back(t.inverseArea > 0.0f ? 1.0f / t.inverseArea : 0.0f);
     }
@@ -494,23 +494,23 @@ AtlasMode::TexelRadiance AtlasMode::readTexels() const {
 }
 
 glm::vec3 AtlasMode::direction(std::uint32_t i) const {
-    if (!mGpu || !mGpu->directions) {
+    if (!mGpu || !mGpu->exchange.directions) {
         throw Error("atlas: direction() before the first iterate()");
     }
-    return mGpu->directions->sample(directionIndex(i)).omega;
+    return mGpu->exchange.directions->sample(directionIndex(i)).omega;
 }
 
 std::uint32_t AtlasMode::directionIndex(std::uint32_t i) const {
     const Gpu& g = *mGpu;
-    return g.shuffleDirections ? (*g.order)(i) : i;
+    return g.glossy.shuffleDirections ? (*g.exchange.order)(i) : i;
 }
 
 
 PassTimes AtlasMode::timings() const {
     if (!mGpu) return {};
     PassTimes t = mGpu->timer.totals();
-    t.push_back(mGpu->wallBuild);
-    t.push_back(mGpu->wallExchange);
+    t.push_back(mGpu->exchange.wallBuild);
+    t.push_back(mGpu->exchange.wallExchange);
     return t;
 }
 

@@ -17,44 +17,44 @@ using atlasmode::addressOf;
 ImageSet AtlasMode::resolve() {
     Gpu& g = sceneState(mGpu, name(), "resolve");
     const std::uint32_t samples = mOptions.viewSamples;
-    const std::uint32_t width = g.camera->width(), height = g.camera->height();
-    g.camera->accumulator().clear(*mContext);
+    const std::uint32_t width = g.view.camera->width(), height = g.view.camera->height();
+    g.view.camera->accumulator().clear(*mContext);
     shader::AtlasShadePush push{};
-    push.sums = addressOf(*mContext, g.sums);
-    push.texels = addressOf(*mContext, g.texels);
-    push.charts = addressOf(*mContext, g.charts);
+    push.sums = addressOf(*mContext, g.exchange.sums);
+    push.texels = addressOf(*mContext, g.link.texels);
+    push.charts = addressOf(*mContext, g.link.charts);
     push.width = width;
     push.height = height;
-    push.atlasWidth = static_cast<std::uint32_t>(g.atlas.maps.width);
-    push.atlasHeight = static_cast<std::uint32_t>(g.atlas.maps.height);
+    push.atlasWidth = static_cast<std::uint32_t>(g.link.atlas.maps.width);
+    push.atlasHeight = static_cast<std::uint32_t>(g.link.atlas.maps.height);
     push.reflectedScale = mTotalWeight > 0.0 ? float(1.0 / mTotalWeight) : 0.0f;
-    push.settled = addressOf(*mContext, g.settled);
+    push.settled = addressOf(*mContext, g.exchange.settled);
     push.directScale = mOptions.directScale();
     push.bilinear = mOptions.bilinear ? 1u : 0u;
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
     push.environmentRotation = g.scene->environmentRotation();
-    push.direct = addressOf(*mContext, g.directRadiance);
-    push.gathered = g.glossy ? addressOf(*mContext, g.gathered) : glm::uvec2(0u);
-    push.highlight = g.highlightPass ? addressOf(*mContext, g.highlight) : glm::uvec2(0u);
-    if (g.split) {
+    push.direct = addressOf(*mContext, g.direct.directRadiance);
+    push.gathered = g.glossy.gather ? addressOf(*mContext, g.glossy.gathered) : glm::uvec2(0u);
+    push.highlight = g.glossy.highlightPass ? addressOf(*mContext, g.glossy.highlight) : glm::uvec2(0u);
+    if (g.exchange.split) {
         push.split = 1u;
-        push.sumsIndirect = addressOf(*mContext, g.sumsIndirect);
-        push.gatheredIndirect = g.glossy ? addressOf(*mContext, g.gatheredIndirect) : glm::uvec2(0u);
+        push.sumsIndirect = addressOf(*mContext, g.exchange.sumsIndirect);
+        push.gatheredIndirect = g.glossy.gather ? addressOf(*mContext, g.glossy.gatheredIndirect) : glm::uvec2(0u);
         push.indirectScale = mIndirectWeight > 0.0 ? float(1.0 / mIndirectWeight) : 0.0f;
     }
     for (std::uint32_t k = 0; k < samples; ++k) {
-        const gpu::CameraSample sample = g.camera->sample(k, samples > 1, mTime, mSeed);
+        const gpu::CameraSample sample = g.view.camera->sample(k, samples > 1, mTime, mSeed);
         push.samplePosition = sample.samplePosition;
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
-            g.camera->record(cmd, sample, &g.timer);
-            g.view->record(cmd, sample, &g.timer);
-            if (g.highlightPass) {
+            g.view.camera->record(cmd, sample, &g.timer);
+            g.view.lookup->record(cmd, sample, &g.timer);
+            if (g.glossy.highlightPass) {
                 recordHighlight(cmd);
             }
             const std::uint32_t scope = g.timer.start(cmd, "shade");
-            const VkDescriptorSet sets[] = {g.camera->set(), g.viewSet};
-            g.shadePass.dispatch(cmd, push,
+            const VkDescriptorSet sets[] = {g.view.camera->set(), g.view.set};
+            g.view.shadePass.dispatch(cmd, push,
                                  {vk::groupCount(width, shader::kAtlasViewGroupSize),
                                   vk::groupCount(height, shader::kAtlasViewGroupSize), 1},
                                  sets);
@@ -66,14 +66,14 @@ ImageSet AtlasMode::resolve() {
     }
     ImageSet out;
     out.iterations = mIterations;
-    gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, samples);
+    gpu::AccumulatedImages estimate = g.view.camera->accumulator().resolve(*mContext, samples);
     out.layers = std::move(estimate.layers);
     addSampleLosses(out, estimate.nonFiniteSamples, estimate.droppedSamples, estimate.expectedSamples);
-    out.counters.emplace_back("atlas_texels", double(g.texelCount));
-    out.counters.emplace_back("atlas_charts", double(g.atlas.stats.charts));
-    out.counters.emplace_back("atlas_degenerate_triangles", double(g.tables.degenerateTriangles));
-    out.counters.emplace_back("bundle_nodes_last", double(g.nodesLast));
-    out.counters.emplace_back("bundle_rebuilds", double(g.rebuilds));
+    out.counters.emplace_back("atlas_texels", double(g.link.texelCount));
+    out.counters.emplace_back("atlas_charts", double(g.link.atlas.stats.charts));
+    out.counters.emplace_back("atlas_degenerate_triangles", double(g.link.tables.degenerateTriangles));
+    out.counters.emplace_back("bundle_nodes_last", double(g.exchange.nodesLast));
+    out.counters.emplace_back("bundle_rebuilds", double(g.exchange.rebuilds));
     return out;
 }
 
