@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -14,6 +16,23 @@
 namespace bl::atlas {
 
 namespace {
+
+// A long build says how far it is every few seconds (a 1M-triangle scene takes tens of seconds,
+// most of them packing), instead of nothing until the end.
+class ProgressLog {
+public:
+    void say(const std::function<std::string()>& where) {
+        const auto now = std::chrono::steady_clock::now();
+        if (now - mLast < std::chrono::seconds(5)) return;
+        mLast = now;
+        char seconds[32];
+        std::snprintf(seconds, sizeof(seconds), "%.0f s", std::chrono::duration<double>(now - mStart).count());
+        log::info("atlas: " + where() + " (" + seconds + ")");
+    }
+
+private:
+    std::chrono::steady_clock::time_point mStart = std::chrono::steady_clock::now(), mLast = mStart;
+};
 
 glm::vec3 corner(const Mesh& m, std::uint32_t f, int k) { return m.positions[m.triangles[f][k]]; }
 
@@ -125,7 +144,7 @@ constexpr std::size_t kMaxAtlasTexels = std::size_t(1) << 28;
 // options.texelsPerUnit in the smallest power-of-two page that holds it, up to options.pageSize,
 // then on as many such pages as needed. Returns the density; uv become page texel coordinates.
 float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, double fill, int& width, int& height,
-                int& pages) {
+                int& pages, ProgressLog& progress) {
     double area = 0.0;
     for (const FlatChart& c : charts) {
         for (std::size_t i = 0; i < c.faces.size(); ++i) {
@@ -171,6 +190,13 @@ float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, dou
             int used = 2 * rows; // a chart wider than the atlas: shrink
             if (packCharts(charts, float(trial), width, kUnbounded, options.padding, 1, attempt)) used = attempt.usedHeight;
             log::debug("atlas: " + std::to_string(trial) + " texels per unit take " + std::to_string(used) + " rows");
+            progress.say([&] {
+                char text[32];
+                std::snprintf(text, sizeof(text), "%.4g", trial);
+                return "packing " + std::to_string(charts.size()) + " charts, density search step " + std::to_string(i + 1) +
+                       " (" + text + " texels per unit take " + std::to_string(used) + " of " + std::to_string(rows) +
+                       " rows)";
+            });
             if (used <= rows && trial > fits) {
                 fits = trial;
                 packing = attempt;
@@ -197,10 +223,14 @@ float packAtlas(std::vector<FlatChart>& charts, const AtlasOptions& options, dou
 // triangles left owning no texel (after taking texels from triangles that own several).
 std::vector<std::pair<std::size_t, std::size_t>> coverTexels(const std::vector<FlatChart>& charts, int width,
                                                              int height, int pages, std::vector<TexelOwner>& owner,
-                                                             std::map<std::pair<int, int>, int>& owned) {
+                                                             std::map<std::pair<int, int>, int>& owned,
+                                                             ProgressLog& progress) {
     owner.assign(std::size_t(width) * height * pages, TexelOwner{});
     owned.clear();
     for (std::size_t c = 0; c < charts.size(); ++c) {
+        progress.say([&] {
+            return "covering texels: chart " + std::to_string(c + 1) + " of " + std::to_string(charts.size());
+        });
         const FlatChart& chart = charts[c];
         for (std::size_t i = 0; i < chart.faces.size(); ++i) {
             const glm::vec2 p[3] = {chart.uv[3 * i], chart.uv[3 * i + 1], chart.uv[3 * i + 2]};
@@ -326,7 +356,7 @@ void refuseOutweighingSingles(const std::vector<FlatChart>& singles, float densi
 // moving anything else (on new pages where no hole holds them); alone, they own every texel they
 // touch.
 Covered packAndCover(const Scene& scene, const AtlasOptions& options, const std::vector<std::vector<std::uint32_t>>& welded,
-                     const std::vector<FlatChart>& oriented, double fill) {
+                     const std::vector<FlatChart>& oriented, double fill, ProgressLog& progress) {
     std::size_t triangleCount = 0;
     for (const Mesh& m : scene.meshes) triangleCount += m.triangles.size();
     Covered out;
@@ -336,7 +366,7 @@ Covered packAndCover(const Scene& scene, const AtlasOptions& options, const std:
     int& width = out.width;
     int& height = out.height;
     int& pages = out.pages;
-    const float density = out.density = packAtlas(charts, options, fill, width, height, pages);
+    const float density = out.density = packAtlas(charts, options, fill, width, height, pages, progress);
     out.packedPages = pages;
     std::vector<ChartPacker> packers(std::size_t(pages), ChartPacker(width, height, options.padding));
     for (const FlatChart& c : charts) packers[c.page].occupy(c);
@@ -346,8 +376,9 @@ Covered packAndCover(const Scene& scene, const AtlasOptions& options, const std:
                " of the atlas with their padding");
     double singleTexels = 0.0; // what the singles of every round need (refuseOutweighingSingles)
     for (int round = 0;; ++round) {
+        progress.say([&] { return "covering texels, round " + std::to_string(round + 1); });
         std::vector<std::pair<std::size_t, std::size_t>> uncovered =
-            coverTexels(charts, width, height, pages, out.owner, out.owned);
+            coverTexels(charts, width, height, pages, out.owner, out.owned, progress);
         if (uncovered.empty() || round == kCoverageRounds) {
             out.uncoveredTriangles = uncovered.size();
             break;
@@ -365,7 +396,12 @@ Covered packAndCover(const Scene& scene, const AtlasOptions& options, const std:
         std::erase_if(charts, [](const FlatChart& c) { return c.faces.empty(); });
         orientCharts(singles);
         refuseOutweighingSingles(singles, density, options, occupied, width, height, triangleCount, singleTexels);
-        for (FlatChart& single : singles) {
+        for (std::size_t k = 0; k < singles.size(); ++k) {
+            FlatChart& single = singles[k];
+            progress.say([&] {
+                return "placing " + std::to_string(singles.size()) + " single-triangle charts into holes: " +
+                       std::to_string(k + 1) + " placed";
+            });
             glm::vec2 offset;
             int turns = 0;
             std::uint32_t page = 0;
@@ -394,6 +430,7 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     Atlas atlas;
     AtlasStats& st = atlas.stats;
+    ProgressLog progress;
 
     // 1. Charts, flattened and split until valid.
     std::vector<std::vector<std::uint32_t>> welded(scene.meshes.size());
@@ -407,6 +444,10 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
             for (const std::vector<std::uint32_t>& part : connectedComponents(mesh, welded[m], c.faces)) {
                 flattenSplitting(mesh, m, welded[m], part, options.maxStretch, atlas.charts);
             }
+            progress.say([&] {
+                return "flattening mesh " + std::to_string(m + 1) + " of " + std::to_string(scene.meshes.size()) + ": " +
+                       std::to_string(atlas.charts.size()) + " charts so far";
+            });
         }
         st.nonManifoldFaces += cs.nonManifoldFaces;
         st.degenerateFaces += cs.degenerateFaces;
@@ -419,7 +460,7 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
     // 0.447). Where they would fit in part of a page, the charts are packed again into the rows
     // that leave them room (up to kRoomAttempts times), and the packing with fewer pages is kept.
     const std::vector<FlatChart> oriented = atlas.charts;
-    Covered packed = packAndCover(scene, options, welded, oriented, 1.0);
+    Covered packed = packAndCover(scene, options, welded, oriented, 1.0, progress);
     const double page = double(packed.width) * double(packed.height);
     for (int attempt = 0; options.texelsPerUnit <= 0.0f && packed.pages > packed.packedPages &&
                           attempt < kRoomAttempts && packed.spilledTexels < kRoomAtMost * page;
@@ -428,7 +469,8 @@ Atlas buildAtlas(const Scene& scene, const AtlasOptions& options) {
         log::debug("atlas: " + std::to_string(packed.spilledTexels) + " texels of single-triangle charts spilled onto " +
                    std::to_string(packed.pages - packed.packedPages) + " more page(s); packing into " +
                    std::to_string(fill) + " of the rows");
-        Covered again = packAndCover(scene, options, welded, oriented, fill);
+        progress.say([&] { return "packing again to leave room for single-triangle charts"; });
+        Covered again = packAndCover(scene, options, welded, oriented, fill, progress);
         const bool better = again.pages < packed.pages;
         packed = std::move(again).keepIf(better, std::move(packed));
         if (!better) break;
