@@ -115,6 +115,15 @@ py::object valueOf(const ParamValue& v) {
 
 } // namespace
 
+namespace {
+// A settings dict as the CLI's key=value assignments.
+std::vector<std::string> assignmentsOf(const py::dict& settings) {
+    std::vector<std::string> out;
+    for (const auto& [key, value] : settings) out.push_back(settingText(key) + "=" + settingText(value));
+    return out;
+}
+} // namespace
+
 PYBIND11_MODULE(bundlelab, m) {
     m.doc() = "bundlelab: global illumination with global ray-bundles (Vulkan), its reference path tracer, metrics "
               "and experiment runner";
@@ -144,8 +153,7 @@ PYBIND11_MODULE(bundlelab, m) {
         "render",
         [](const Scene& scene, const std::string& mode, const py::dict& settings, std::optional<std::uint32_t> iterations,
            std::optional<double> seconds, std::uint64_t seed, std::optional<int> width, std::optional<int> height) {
-            std::vector<std::string> assignments;
-            for (const auto& [key, value] : settings) assignments.push_back(settingText(key) + "=" + settingText(value));
+            const std::vector<std::string> assignments = assignmentsOf(settings);
             if (iterations && seconds) throw Error("render: give iterations or seconds, not both");
             if (seconds && !(*seconds > 0.0 && std::isfinite(*seconds))) throw Error("render: seconds must be positive");
             Scene copy = scene;
@@ -219,8 +227,7 @@ PYBIND11_MODULE(bundlelab, m) {
     m.def(
         "plan",
         [](const Scene& scene, const std::string& mode, const py::dict& settings) {
-            std::vector<std::string> assignments;
-            for (const auto& [key, value] : settings) assignments.push_back(settingText(key) + "=" + settingText(value));
+            const std::vector<std::string> assignments = assignmentsOf(settings);
             py::list out;
             for (const PlannedPass& p : createMode(mode, assignments)->plan(scene)) {
                 py::dict d;

@@ -1,6 +1,7 @@
 #include "atlas/Atlas.h"
 
 #include "atlas/AlbedoLookup.h"
+#include "atlas/BuildProgress.h"
 #include "atlas/Packing.h"
 #include "base/Error.h"
 #include "base/Log.h"
@@ -8,7 +9,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <functional>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -16,23 +16,6 @@
 namespace bl::atlas {
 
 namespace {
-
-// A long build says how far it is every few seconds (a 1M-triangle scene takes tens of seconds,
-// most of them packing), instead of nothing until the end.
-class ProgressLog {
-public:
-    void say(const std::function<std::string()>& where) {
-        const auto now = std::chrono::steady_clock::now();
-        if (now - mLast < std::chrono::seconds(5)) return;
-        mLast = now;
-        char seconds[32];
-        std::snprintf(seconds, sizeof(seconds), "%.0f s", std::chrono::duration<double>(now - mStart).count());
-        log::info("atlas: " + where() + " (" + seconds + ")");
-    }
-
-private:
-    std::chrono::steady_clock::time_point mStart = std::chrono::steady_clock::now(), mLast = mStart;
-};
 
 glm::vec3 corner(const Mesh& m, std::uint32_t f, int k) { return m.positions[m.triangles[f][k]]; }
 
