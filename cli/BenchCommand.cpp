@@ -11,6 +11,7 @@
 #include "bundle/BundleFrame.h"
 #include "bundle/DirectionSampler.h"
 #include "cli/Commands.h"
+#include "cli/Median.h"
 #include "scene/SceneLoader.h"
 #include "vk/Context.h"
 
@@ -60,12 +61,6 @@ Scene syntheticScene(std::uint64_t triangles) {
     }
     s.meshes.push_back(std::move(m));
     return s;
-}
-
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
 int runBench(const BenchOptions& o) {
@@ -147,6 +142,7 @@ void addBenchCommand(CLI::App& app, Action& action) {
                     "pipeline) or compute (floor: raster)")
         ->check(CLI::IsMember({"auto", "raster", "compute"}));
     cmd->callback([o, &action] { action = [o] { return runBench(*o); }; });
+    addBenchTexelsCommand(*bench, action);
 }
 
 } // namespace bl::cli

@@ -18,6 +18,8 @@ void addCompareCommand(CLI::App& app, Action& action);
 void addStatsCommand(CLI::App& app, Action& action);
 void addReplayCommand(CLI::App& app, Action& action);
 void addBenchCommand(CLI::App& app, Action& action);
+// `bench texels`, under `bench` (BenchTexelsCommand.cpp).
+void addBenchTexelsCommand(CLI::App& bench, Action& action);
 void addRunCommand(CLI::App& app, Action& action);
 void addAtlasCommand(CLI::App& app, Action& action);
 void addReportCommand(CLI::App& app, Action& action);

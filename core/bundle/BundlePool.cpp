@@ -51,19 +51,11 @@ std::uint32_t payloadBytes(BundlePayload payload) {
 std::span<const std::uint32_t> spv(std::span<const std::uint32_t> s) { return s; }
 } // namespace
 
-TriangleBufferSet makeTriangleBufferSet(VkDevice device, const gpu::GpuScene& scene, VkShaderStageFlags stages) {
-    TriangleBufferSet t;
-    t.layout = vk::makeDescriptorSetLayout(device, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages},
-                                                    {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages},
-                                                    {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages}});
-    t.pool = vk::DescriptorPool(device, 1, 3);
-    t.set = t.pool.allocate(t.layout.get());
-    vk::DescriptorWriter()
-        .buffer(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.planeBuffer())
-        .buffer(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.vertexBuffer())
-        .buffer(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.indexBuffer())
-        .update(device, t.set);
-    return t;
+vk::BoundSet makeTriangleBufferSet(VkDevice device, const gpu::GpuScene& scene, VkShaderStageFlags stages) {
+    return vk::BoundSet(device,
+                        {vk::Bound::storageBuffer(0, scene.planeBuffer()), vk::Bound::storageBuffer(1, scene.vertexBuffer()),
+                         vk::Bound::storageBuffer(2, scene.indexBuffer())},
+                        stages);
 }
 
 VkDeviceAddress deviceAddress(const vk::Context& ctx, const vk::Buffer& buffer) {
@@ -129,7 +121,7 @@ BundlePool::BundlePool(const vk::Context& ctx, const gpu::GpuScene& scene, const
     VkDevice device = ctx.device();
     // Exact variants read the triangle's plane and corners (hit payload) by primitive id.
     mTriangles = makeTriangleBufferSet(device, scene, kDrawStages);
-    VkDescriptorSetLayout layouts[] = {mTriangles.layout.get()};
+    VkDescriptorSetLayout layouts[] = {mTriangles.layout()};
     mDrawLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BundleDrawPush), kDrawStages);
 
     vk::GraphicsPipelineDesc desc; // no attachments, no depth test, no culling
@@ -264,7 +256,7 @@ void BundlePool::recordTriangles(VkCommandBuffer cmd, std::uint32_t slot, const 
         }
     } else {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mDrawLayout.get(), 0, 1, &mTriangles.set, 0, nullptr);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mDrawLayout.get(), 0, 1, mTriangles.sets().data(), 0, nullptr);
         mScene->bindGeometry(cmd);
         for (const gpu::GpuDraw& d : mScene->draws()) {
             push.model = mScene->modelMatrix(d.mesh, time);

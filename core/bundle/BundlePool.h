@@ -19,7 +19,7 @@
 
 #include "gpu/GpuScene.h"
 #include "vk/Buffer.h"
-#include "vk/Descriptors.h"
+#include "vk/BoundSet.h"
 #include "vk/GpuTimer.h"
 #include "vk/ComputePass.h"
 #include "vk/Pipeline.h"
@@ -68,12 +68,7 @@ struct BundlePoolStatus {
 
 // The scene's triangles as the exact builds read them by primitive id: storage buffers at binding
 // 0 (planes), 1 (vertices) and 2 (indices) of one descriptor set (BundlePool, ComputeBundleRasterizer).
-struct TriangleBufferSet {
-    vk::DescriptorSetLayout layout;
-    vk::DescriptorPool pool;
-    VkDescriptorSet set = VK_NULL_HANDLE;
-};
-TriangleBufferSet makeTriangleBufferSet(VkDevice device, const gpu::GpuScene& scene, VkShaderStageFlags stages);
+vk::BoundSet makeTriangleBufferSet(VkDevice device, const gpu::GpuScene& scene, VkShaderStageFlags stages);
 
 class BundlePool {
 public:
@@ -137,7 +132,7 @@ private:
     vk::Buffer mNodes;
     vk::Buffer mPayload;
     vk::Buffer mPrevious;
-    TriangleBufferSet mTriangles;
+    vk::BoundSet mTriangles;
     vk::PipelineLayout mDrawLayout;
     vk::Pipeline mTrianglePipeline;
     vk::Pipeline mSplatPipeline;

@@ -35,9 +35,9 @@ ComputeBundleRasterizer::ComputeBundleRasterizer(const vk::Context& ctx, const g
                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                           VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                       vk::MemoryUse::Device);
-    mClear = vk::ComputePass<shader::BundleComputeClearPush>(device, kSpv_bundle_compute_clear_comp, {mTriangleSet.layout.get()});
+    mClear = vk::ComputePass<shader::BundleComputeClearPush>(device, kSpv_bundle_compute_clear_comp, {mTriangleSet.layout()});
     mTriangles = vk::ComputePass<shader::BundleComputePush>(device, kSpv_bundle_compute_triangles_comp,
-                                                            {mTriangleSet.layout.get()});
+                                                            {mTriangleSet.layout()});
 }
 
 void ComputeBundleRasterizer::record(VkCommandBuffer cmd, const BundlePool& pool, std::uint32_t slot,
@@ -89,11 +89,11 @@ void ComputeBundleRasterizer::record(VkCommandBuffer cmd, const BundlePool& pool
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
         push.pass = shader::kBundleComputeSmallPass;
         mTriangles.dispatch(cmd, push, vk::groupCount(push.triangleCount, shader::kBundleComputeGroupSize),
-                            {&mTriangleSet.set, 1});
+                            mTriangleSet.sets());
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT);
         push.pass = shader::kBundleComputeBigPass;
-        mTriangles.dispatchIndirect(cmd, push, mBig.get(), 0, {&mTriangleSet.set, 1});
+        mTriangles.dispatchIndirect(cmd, push, mBig.get(), 0, mTriangleSet.sets());
       }
     }
     if (timer) timer->stop(cmd, scope);

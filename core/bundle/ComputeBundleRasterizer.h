@@ -31,7 +31,7 @@ public:
 private:
     const vk::Context* mContext;
     const gpu::GpuScene* mScene;
-    TriangleBufferSet mTriangleSet;
+    vk::BoundSet mTriangleSet;
     vk::Buffer mBig; // BundleComputeBigHeader + one uint per triangle of the largest draw
     vk::ComputePass<shader::BundleComputeClearPush> mClear;
     vk::ComputePass<shader::BundleComputePush> mTriangles;

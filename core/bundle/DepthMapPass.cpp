@@ -22,11 +22,8 @@ DepthMapPass::DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, s
     mDepth = vk::GpuImage(ctx, {resolution, resolution, 1, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
     mFrame = gpu::RecordedUniform<shader::BundleFrame>(ctx);
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    mSetLayout = vk::makeDescriptorSetLayout(device, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, stages}});
-    mPool = vk::DescriptorPool(device, 1, 2);
-    mSet = mPool.allocate(mSetLayout.get());
-    vk::DescriptorWriter().buffer(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, mFrame.get()).update(device, mSet);
-    VkDescriptorSetLayout layouts[] = {mSetLayout.get()};
+    mBound = vk::BoundSet(device, {vk::Bound::uniformBuffer(0, mFrame.get())}, stages);
+    VkDescriptorSetLayout layouts[] = {mBound.layout()};
     mPipelineLayout = vk::makePipelineLayout(device, layouts, sizeof(shader::BundleDepthMapPush), VK_SHADER_STAGE_VERTEX_BIT);
     vk::GraphicsPipelineDesc desc;
     desc.vertexShader = kSpv_bundle_depth_map_vert;
@@ -54,7 +51,7 @@ void DepthMapPass::record(VkCommandBuffer cmd, const shader::BundleFrame& frame,
     targets.viewport = bundleViewport(frame);
     vk::beginRendering(cmd, targets);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipeline.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipelineLayout.get(), 0, 1, &mSet, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipelineLayout.get(), 0, 1, mBound.sets().data(), 0, nullptr);
     mScene->bindGeometry(cmd);
     shader::BundleDepthMapPush push{};
     for (const gpu::GpuDraw& d : mScene->draws()) {

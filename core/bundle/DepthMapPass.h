@@ -8,7 +8,7 @@
 #include "gpu/GpuScene.h"
 #include "gpu/RecordedUniform.h"
 #include "vk/Buffer.h"
-#include "vk/Descriptors.h"
+#include "vk/BoundSet.h"
 #include "vk/GpuTimer.h"
 #include "vk/Pipeline.h"
 
@@ -33,9 +33,7 @@ private:
     vk::GpuImage mMap;
     vk::GpuImage mDepth;
     gpu::RecordedUniform<shader::BundleFrame> mFrame;
-    vk::DescriptorSetLayout mSetLayout;
-    vk::DescriptorPool mPool;
-    VkDescriptorSet mSet = VK_NULL_HANDLE;
+    vk::BoundSet mBound;
     vk::PipelineLayout mPipelineLayout;
     vk::Pipeline mPipeline;
 };

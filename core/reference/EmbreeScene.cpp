@@ -135,15 +135,42 @@ bool EmbreeScene::intersectBeyond(const glm::vec3& origin, const glm::vec3& dire
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
         return false;
     }
-    const std::uint32_t meshIndex = rh.hit.geomID;
-    const Mesh& mesh = mScene->meshes[meshIndex];
-    const glm::uvec3& tri = mesh.triangles[rh.hit.primID];
-    glm::vec3 a, b, c;
-    triangle(meshIndex, rh.hit.primID, a, b, c);
-    const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
     hit.t = rh.ray.tfar;
+    fillHit(rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, hit);
+    return true;
+}
+
+SurfaceHit EmbreeScene::surfaceAt(std::uint32_t mesh, std::uint32_t tri, const glm::vec3& point) const {
+    glm::vec3 a, b, c;
+    triangle(mesh, tri, a, b, c);
+    // Barycentrics of the projection (Ericson 3.4), in double: slivers leave little of float.
+    const glm::dvec3 e0 = glm::dvec3(b) - glm::dvec3(a), e1 = glm::dvec3(c) - glm::dvec3(a);
+    const glm::dvec3 e2 = glm::dvec3(point) - glm::dvec3(a);
+    const double d00 = glm::dot(e0, e0), d01 = glm::dot(e0, e1), d11 = glm::dot(e1, e1);
+    const double d20 = glm::dot(e2, e0), d21 = glm::dot(e2, e1);
+    const double denom = d00 * d11 - d01 * d01;
+    double u = denom > 0.0 ? (d11 * d20 - d01 * d21) / denom : 1.0 / 3.0;
+    double v = denom > 0.0 ? (d00 * d21 - d01 * d20) / denom : 1.0 / 3.0;
+    u = std::max(u, 0.0);
+    v = std::max(v, 0.0);
+    if (u + v > 1.0) {
+        const double sum = u + v;
+        u /= sum;
+        v /= sum;
+    }
+    SurfaceHit hit;
+    fillHit(mesh, tri, float(u), float(v), hit);
+    return hit;
+}
+
+void EmbreeScene::fillHit(std::uint32_t meshIndex, std::uint32_t primitive, float u, float v, SurfaceHit& hit) const {
+    const Mesh& mesh = mScene->meshes[meshIndex];
+    const glm::uvec3& tri = mesh.triangles[primitive];
+    glm::vec3 a, b, c;
+    triangle(meshIndex, primitive, a, b, c);
+    const float w = 1.0f - u - v;
     hit.mesh = meshIndex;
-    hit.triangle = rh.hit.primID;
+    hit.triangle = primitive;
     hit.position = w * a + u * b + v * c;
     hit.geometricNormal = glm::normalize(glm::cross(b - a, c - a));
     const std::vector<glm::vec3>& n = mNormals[meshIndex];
@@ -155,7 +182,6 @@ bool EmbreeScene::intersectBeyond(const glm::vec3& origin, const glm::vec3& dire
     }
     hit.uv = mesh.uvs.empty() ? glm::vec2(0.0f) : w * mesh.uvs[tri.x] + u * mesh.uvs[tri.y] + v * mesh.uvs[tri.z];
     hit.offsetScale = std::max({maxAbs(a), maxAbs(b), maxAbs(c)});
-    return true;
 }
 
 namespace {

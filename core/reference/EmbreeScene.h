@@ -50,6 +50,11 @@ public:
     // not catch the rays that leave into it, as it casts it no shadow). hit.t counts from `light`.
     bool intersectFromLight(const glm::vec3& light, const glm::vec3& direction, SurfaceHit& hit) const;
 
+    // Point `point` of triangle `tri` of mesh `mesh` as a hit, t = 0: its barycentrics from the
+    // point's projection onto the triangle's plane, clamped into the triangle (a texel's sample point
+    // to path-trace from: reference/TexelBaker.h).
+    SurfaceHit surfaceAt(std::uint32_t mesh, std::uint32_t tri, const glm::vec3& point) const;
+
     // World-space vertices of a triangle (at the baked time).
     void triangle(std::uint32_t mesh, std::uint32_t tri, glm::vec3& a, glm::vec3& b, glm::vec3& c) const;
     const Scene& scene() const { return *mScene; }
@@ -66,6 +71,8 @@ private:
     float mLightClearance = 0.0f; // ScenePrecision.h's lightClearance of the scene's radius
     bool intersectBeyond(const glm::vec3& origin, const glm::vec3& direction, float tNear, float tMax,
                          SurfaceHit& hit) const;
+    // Everything of `hit` but t at barycentrics (1 - u - v, u, v) of the triangle.
+    void fillHit(std::uint32_t meshIndex, std::uint32_t tri, float u, float v, SurfaceHit& hit) const;
     RTCDevice mDevice = nullptr;
     RTCScene mRtcScene = nullptr;
     std::vector<std::vector<glm::vec3>> mPositions; // world space, per mesh

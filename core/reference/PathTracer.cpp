@@ -63,18 +63,28 @@ glm::vec3 PathTracer::albedoAt(const Material& m, glm::vec2 uv) const {
 
 PathSample PathTracer::trace(int x, int y, std::uint32_t sampleIndex, std::uint32_t seed,
                              std::vector<std::string>* log) const {
-    const Scene& scene = mGeometry->scene();
     const auto width = static_cast<std::uint32_t>(mCamera.width);
     shader::RandomStream rng = shader::blRandomStream(seed, static_cast<std::uint32_t>(y) * width + x, sampleIndex);
+    const glm::vec2 pixel = glm::vec2(x, y) + shader::blRandom2(rng);
+    return tracePath(mCamera.position, shader::blCameraRayDirection(mCamera, pixel), rng, nullptr, log);
+}
+
+PathSample PathTracer::traceLeaving(const SurfaceHit& at, bool back, std::uint32_t index, std::uint32_t sampleIndex,
+                                    std::uint32_t seed) const {
+    shader::RandomStream rng = shader::blRandomStream(seed, index, sampleIndex);
+    const glm::vec3 normal = back ? -at.geometricNormal : at.geometricNormal;
+    return tracePath(at.position + normal, -normal, rng, &at, nullptr);
+}
+
+PathSample PathTracer::tracePath(glm::vec3 origin, glm::vec3 direction, shader::RandomStream& rng,
+                                 const SurfaceHit* first, std::vector<std::string>* log) const {
+    const Scene& scene = mGeometry->scene();
     PathSample out;
     auto add = [&](int segments, const glm::vec3& value) {
         out.layers[std::min(segments, kPathLayerCount) - 1] += value;
         if (log) log->push_back("  + " + describe(value) + " at path length " + std::to_string(segments));
     };
 
-    glm::vec2 pixel = glm::vec2(x, y) + shader::blRandom2(rng);
-    glm::vec3 origin = mCamera.position;
-    glm::vec3 direction = shader::blCameraRayDirection(mCamera, pixel);
     glm::vec3 throughput(1.0f);
     float lastBrdfPdf = 0.0f; // density of the direction just sampled (0: camera ray)
     glm::vec3 lastPosition = origin;
@@ -82,8 +92,13 @@ PathSample PathTracer::trace(int x, int y, std::uint32_t sampleIndex, std::uint3
 
     for (int segments = 1;; ++segments) {
         SurfaceHit hit;
-        ++out.rays;
-        if (!mGeometry->intersect(origin, direction, infinity, hit)) {
+        const bool given = segments == 1 && first;
+        if (given) {
+            hit = *first;
+        } else {
+            ++out.rays;
+        }
+        if (!given && !mGeometry->intersect(origin, direction, infinity, hit)) {
             if (mEnvironment->present()) {
                 glm::vec3 le = mEnvironment->radiance(direction);
                 float w = segments == 1 ? 1.0f : shader::blPowerHeuristic(lastBrdfPdf, mLights->pdfEnvironment(direction));

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <shared/GpuTypes.h>
+#include <shared/Random.h>
 #include <string>
 #include <vector>
 
@@ -44,8 +45,18 @@ public:
     // `log`, when given, receives one line per event of the path (for replaying a bad sample).
     PathSample trace(int x, int y, std::uint32_t sampleIndex, std::uint32_t seed,
                      std::vector<std::string>* log = nullptr) const;
+    // One sample of the radiance leaving surface point `at` on its front (`back` false) or back side
+    // along that side's geometric normal: a path whose first vertex is `at`, as if a camera ray had
+    // arrived there along the normal (layer 0 holds what the side emits, the rest what it reflects;
+    // for a diffuse surface the direction does not matter). `index` plays the pixel's part in the
+    // random stream (reference/TexelBaker.h: the texel).
+    PathSample traceLeaving(const SurfaceHit& at, bool back, std::uint32_t index, std::uint32_t sampleIndex,
+                            std::uint32_t seed) const;
 
 private:
+    // The path from `origin` along `direction` (a camera ray), its first hit `first` when given.
+    PathSample tracePath(glm::vec3 origin, glm::vec3 direction, shader::RandomStream& rng, const SurfaceHit* first,
+                         std::vector<std::string>* log) const;
     glm::vec3 albedoAt(const Material& m, glm::vec2 uv) const;
 
     const EmbreeScene* mGeometry;

@@ -52,6 +52,9 @@ public:
     std::vector<BadSample> badSamples() const;
 
     PathSample replay(int x, int y, std::uint32_t sampleIndex, std::uint32_t seed, std::vector<std::string>& log) const;
+    // The scene and the tracer as this renderer set them up (reference/TexelBaker.h traces from surfaces).
+    const EmbreeScene& geometry() const { return *mGeometry; }
+    const PathTracer& tracer() const { return *mTracer; }
 
 private:
     int mWidth;

@@ -27,7 +27,7 @@ LayoutCounts& layoutCounts() {
 }
 } // namespace
 
-DescriptorSetLayout makeDescriptorSetLayout(VkDevice device, std::initializer_list<Binding> bindings) {
+DescriptorSetLayout makeDescriptorSetLayout(VkDevice device, std::span<const Binding> bindings) {
     std::vector<VkDescriptorSetLayoutBinding> list;
     for (const Binding& b : bindings) {
         list.push_back({b.binding, b.type, b.count, b.stages, nullptr});

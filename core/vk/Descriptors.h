@@ -6,6 +6,7 @@
 #include <deque>
 #include <initializer_list>
 #include <map>
+#include <span>
 #include <vector>
 
 namespace bl::vk {
@@ -17,7 +18,10 @@ struct Binding {
     std::uint32_t count = 1;
 };
 
-DescriptorSetLayout makeDescriptorSetLayout(VkDevice device, std::initializer_list<Binding> bindings);
+DescriptorSetLayout makeDescriptorSetLayout(VkDevice device, std::span<const Binding> bindings);
+inline DescriptorSetLayout makeDescriptorSetLayout(VkDevice device, std::initializer_list<Binding> bindings) {
+    return makeDescriptorSetLayout(device, std::span<const Binding>(bindings.begin(), bindings.size()));
+}
 
 class DescriptorPool {
 public:

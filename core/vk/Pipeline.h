@@ -4,6 +4,8 @@
 
 #include "vk/Handle.h"
 
+#include <glm/vec3.hpp>
+
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -39,6 +41,11 @@ Pipeline makeComputePipeline(VkDevice device, std::span<const std::uint32_t> spi
 // Workgroups needed to cover `items` with groups of `groupSize`.
 inline std::uint32_t groupCount(std::uint32_t items, std::uint32_t groupSize) {
     return (items + groupSize - 1) / groupSize;
+}
+
+// Workgroups of groupSize x groupSize covering a width x height image.
+inline glm::uvec3 groupCount(std::uint32_t width, std::uint32_t height, std::uint32_t groupSize) {
+    return {groupCount(width, groupSize), groupCount(height, groupSize), 1u};
 }
 
 } // namespace bl::vk

@@ -100,7 +100,7 @@ void AtlasMode::recordDirect(VkCommandBuffer cmd, const shader::AtlasDirectPush&
                              std::uint32_t count) {
     Gpu& g = *mGpu;
     const std::uint32_t scope = g.timer.start(cmd, name);
-    g.direct.directPass.dispatch(cmd, push, vk::groupCount(count, shader::kAtlasGroupSize), {&g.direct.directSet, 1});
+    g.direct.directPass.dispatch(cmd, push, vk::groupCount(count, shader::kAtlasGroupSize), g.direct.directSet.sets());
     g.timer.stop(cmd, scope);
 }
 

@@ -65,21 +65,12 @@ void AtlasMode::setUpFirstShot(const Scene& scene) {
     g.direct.shotSum = vk::makeBuffer(*mContext, std::span<const glm::vec4>(zero), kStorage);
 
     VkDevice device = mContext->device();
-    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    g.direct.firstShotSetLayout = vk::makeDescriptorSetLayout(
-        device, {{shader::kAtlasFirstShotBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kAtlasFirstShotBindingMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kAtlasFirstShotBindingMaps2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-    g.direct.firstShotSet = g.descriptorPool.allocate(g.direct.firstShotSetLayout.get());
-    vk::DescriptorWriter()
-        .buffer(shader::kAtlasFirstShotBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g.direct.emitterPoints->buffer())
-        .image(shader::kAtlasFirstShotBindingMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g.direct.emitterPoints->maps().view(),
-               VK_IMAGE_LAYOUT_GENERAL)
-        .image(shader::kAtlasFirstShotBindingMaps2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g.direct.emitterPoints->maps().view(),
-               VK_IMAGE_LAYOUT_GENERAL)
-        .update(device, g.direct.firstShotSet);
+    g.direct.firstShotSet = vk::BoundSet(
+        device, {vk::Bound::storageBuffer(shader::kAtlasFirstShotBindingPoints, g.direct.emitterPoints->buffer()),
+                 vk::Bound::storageImage(shader::kAtlasFirstShotBindingMaps, g.direct.emitterPoints->maps().view()),
+                 vk::Bound::storageImage(shader::kAtlasFirstShotBindingMaps2, g.direct.emitterPoints->maps().view())});
     g.direct.firstShotPass = vk::ComputePass<shader::AtlasFirstShotPush>(device, kSpv_modes_atlas_first_shot_comp,
-                                                                  {g.direct.firstShotSetLayout.get()});
+                                                                         {g.direct.firstShotSet.layout()});
 }
 
 void AtlasMode::recordFirstShot(VkCommandBuffer cmd, double time) {
@@ -97,7 +88,7 @@ void AtlasMode::recordFirstShot(VkCommandBuffer cmd, double time) {
     push.texelCount = g.link.texelCount;
     push.inverseShots = 1.0f / float(mIterations + 1);
     const std::uint32_t scope = g.timer.start(cmd, "first shot");
-    g.direct.firstShotPass.dispatch(cmd, push, vk::groupCount(g.link.texelCount, shader::kAtlasGroupSize), {&g.direct.firstShotSet, 1});
+    g.direct.firstShotPass.dispatch(cmd, push, vk::groupCount(g.link.texelCount, shader::kAtlasGroupSize), g.direct.firstShotSet.sets());
     g.timer.stop(cmd, scope);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }

@@ -70,7 +70,7 @@ void AtlasMode::recordHighlight(VkCommandBuffer cmd) {
     push.lightCount = g.direct.shadows->lightCount();
     push.shadowResolution = g.direct.shadows->resolution();
     const std::uint32_t scope = g.timer.start(cmd, "glossy highlight");
-    const VkDescriptorSet sets[] = {g.view.camera->set(), g.direct.directSet};
+    const VkDescriptorSet sets[] = {g.view.camera->set(), g.direct.directSet.set()};
     g.glossy.highlightPass.dispatch(cmd, push,
                              {vk::groupCount(push.width, shader::kAtlasViewGroupSize),
                               vk::groupCount(push.height, shader::kAtlasViewGroupSize), 1},

@@ -16,7 +16,7 @@
 #include "modes/atlas/DirectionOrder.h"
 #include "sampling/EnvironmentLight.h"
 #include "vk/ComputePass.h"
-#include "vk/Descriptors.h"
+#include "vk/BoundSet.h"
 
 namespace bl {
 
@@ -72,15 +72,13 @@ struct AtlasDirectState {
     vk::Buffer samples, firstSample;               // TexelSamples of the direct pass (with lights only)
     vk::Buffer directRadiance;
     vk::ComputePass<shader::AtlasDirectPush> directPass;
-    vk::DescriptorSetLayout directSetLayout;
-    VkDescriptorSet directSet = VK_NULL_HANDLE;
+    vk::BoundSet directSet;
     // first_shot: the emitter points, the point/spot lights' part of the direct atlas kept apart
     // and the running sum of the shots (vec4 per texel side each).
     bool firstShot = false;
     std::unique_ptr<gpu::EmitterPointPass> emitterPoints;
     vk::Buffer pointDirect, shotSum;
-    vk::DescriptorSetLayout firstShotSetLayout;
-    VkDescriptorSet firstShotSet = VK_NULL_HANDLE;
+    vk::BoundSet firstShotSet;
     vk::ComputePass<shader::AtlasFirstShotPush> firstShotPass;
 };
 
@@ -104,8 +102,7 @@ struct AtlasViewState {
     std::unique_ptr<gpu::CameraPass> camera;
     std::unique_ptr<atlasmode::AtlasViewPass> lookup;
     vk::ComputePass<shader::AtlasShadePush> shadePass;
-    vk::DescriptorSetLayout setLayout;
-    VkDescriptorSet set = VK_NULL_HANDLE;
+    vk::BoundSet bound;
 };
 
 struct AtlasMode::Gpu {
@@ -115,7 +112,6 @@ struct AtlasMode::Gpu {
     AtlasDirectState direct;
     AtlasGlossyState glossy;
     AtlasViewState view;
-    vk::DescriptorPool descriptorPool; // the view's, the direct pass's and the first shot's sets
     vk::GpuTimer timer;
     Bounds bounds;
 };

@@ -74,11 +74,8 @@ AtlasMode::AtlasMode(const Settings& settings) : mSettings(settings), mOptions(a
 AtlasMode::~AtlasMode() = default;
 
 void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
-    if (!ctx) {
-        throw Error("mode atlas needs a Vulkan device");
-    }
+    mContext = &requireDevice(ctx, "atlas");
     mScene = &scene;
-    mContext = ctx;
     mIterations = 0;
     mTotalWeight = 0.0;
     mPass = 1;
@@ -216,27 +213,15 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
                               vk::MemoryUse::Upload);
 
     VkDevice device = ctx->device();
-    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
     g->exchange.exchangePass = vk::ComputePass<shader::AtlasExchangePush>(device, kSpv_modes_atlas_exchange_comp);
     g->exchange.updatePass = vk::ComputePass<shader::AtlasUpdatePush>(device, kSpv_modes_atlas_update_comp);
-    g->view.setLayout = vk::makeDescriptorSetLayout(device, {{shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-    // Three sets (view, point lights, first shot); the most of one type is the storage images: the
-    // view, the point lights' shadow cubes and the first shot's two bindings of its cubes.
-    g->descriptorPool = vk::DescriptorPool(device, 3, 4);
-    g->view.set = g->descriptorPool.allocate(g->view.setLayout.get());
     if (!scene.lights.empty()) {
         g->direct.shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
-        g->direct.directSetLayout = vk::makeDescriptorSetLayout(
-            device, {{shader::kAtlasDirectBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                     {shader::kAtlasDirectBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-        g->direct.directSet = g->descriptorPool.allocate(g->direct.directSetLayout.get());
-        vk::DescriptorWriter()
-            .buffer(shader::kAtlasDirectBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
-            .image(shader::kAtlasDirectBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->direct.shadows->maps().view(),
-                   VK_IMAGE_LAYOUT_GENERAL)
-            .update(device, g->direct.directSet);
+        g->direct.directSet = vk::BoundSet(
+            device, {vk::Bound::storageBuffer(shader::kAtlasDirectBindingLights, g->scene->lightBuffer()),
+                     vk::Bound::storageImage(shader::kAtlasDirectBindingShadowMaps, g->direct.shadows->maps().view())});
         g->direct.directPass =
-            vk::ComputePass<shader::AtlasDirectPush>(device, kSpv_modes_atlas_direct_comp, {g->direct.directSetLayout.get()});
+            vk::ComputePass<shader::AtlasDirectPush>(device, kSpv_modes_atlas_direct_comp, {g->direct.directSet.layout()});
     }
     std::vector<shader::GpuMaterial> materials;
     for (const Material& m : scene.materials) materials.push_back(toGpuMaterial(m));
@@ -262,14 +247,12 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
         if (g->direct.shadows) {
             g->glossy.highlight = vk::makeBuffer(*ctx, std::span<const glm::vec4>(pixels), kStorage);
             g->glossy.highlightPass = vk::ComputePass<shader::AtlasHighlightPush>(
-                device, kSpv_modes_atlas_highlight_comp, {g->view.camera->setLayout(), g->direct.directSetLayout.get()});
+                device, kSpv_modes_atlas_highlight_comp, {g->view.camera->setLayout(), g->direct.directSet.layout()});
         }
     }
-    vk::DescriptorWriter()
-        .image(shader::kAtlasViewBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->view.lookup->image().view(), VK_IMAGE_LAYOUT_GENERAL)
-        .update(device, g->view.set);
+    g->view.bound = vk::BoundSet(device, {vk::Bound::storageImage(shader::kAtlasViewBinding, g->view.lookup->image().view())});
     g->view.shadePass = vk::ComputePass<shader::AtlasShadePush>(device, kSpv_modes_atlas_shade_comp,
-                                                           {g->view.camera->setLayout(), g->view.setLayout.get()});
+                                                                {g->view.camera->setLayout(), g->view.bound.layout()});
     mGpu = std::move(g);
     setUpFirstShot(scene);
 }
@@ -465,7 +448,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
     ++mIterations;
 }
 
-AtlasMode::TexelRadiance AtlasMode::readTexels() const {
+AtlasMode::TexelReadback AtlasMode::readTexels() const {
     const Gpu& g = sceneState(mGpu, name(), "readTexels");
     const std::size_t slots = shader::kAtlasSides * g.link.texelCount;
     std::vector<glm::vec4> sums(2 * slots), settled(slots), direct(slots);
@@ -473,7 +456,7 @@ AtlasMode::TexelRadiance AtlasMode::readTexels() const {
     g.exchange.settled.download(*mContext, settled.data(), settled.size() * sizeof(glm::vec4));
     g.direct.directRadiance.download(*mContext, direct.data(), direct.size() * sizeof(glm::vec4));
     const float scale = mTotalWeight > 0.0 ? float(1.0 / mTotalWeight) : 0.0f;
-    TexelRadiance out;
+    TexelReadback out;
     out.reflected.resize(slots);
     for (std::size_t s = 0; s < slots; ++s) {
         out.reflected[s] = glm::vec3(sums[2 * s] + sums[2 * s + 1]) * scale + glm::vec3(settled[s]) +
@@ -489,6 +472,19 @@ AtlasMode::TexelRadiance AtlasMode::readTexels() const {
     for (const shader::AtlasTexel& t : g.link.tables.texels) {
         out.emission.push_back(t.emission);
         out.area.push_back(t.inverseArea > 0.0f ? 1.0f / t.inverseArea : 0.0f);
+    }
+    return out;
+}
+
+const atlas::Atlas& AtlasMode::atlas() const { return sceneState(mGpu, name(), "atlas").link.atlas; }
+
+atlas::TexelRadiance AtlasMode::texelRadiance() const {
+    const TexelReadback texels = readTexels();
+    atlas::TexelRadiance out = atlas::TexelRadiance::like(texelMaps());
+    for (std::size_t t = 0; t < out.texels(); ++t) {
+        for (std::uint32_t side = 0; side < shader::kAtlasSides; ++side) {
+            out.side[side][t] = texels.reflected[shader::kAtlasSides * t + side];
+        }
     }
     return out;
 }

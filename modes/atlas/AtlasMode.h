@@ -118,6 +118,7 @@
 //   light_samples      2       per side   n x n points per texel gather point/spot light
 #pragma once
 
+#include "atlas/TexelRadiance.h"
 #include "modes/Mode.h"
 #include "modes/atlas/AtlasModeOptions.h"
 
@@ -177,12 +178,17 @@ public:
 
     // The reflected radiance of every texel side, weighted sum / total weight (rgb; index 2 * texel + side),
     // and the texels' emission: tests check the atlas itself (the furnace: every texel -> 2).
-    struct TexelRadiance {
+    struct TexelReadback {
         std::vector<glm::vec3> reflected;
         std::vector<glm::vec3> emission;
         std::vector<float> area; // preimage area of each texel, 0 where no surface maps
     };
-    TexelRadiance readTexels() const;
+    TexelReadback readTexels() const;
+    // The same as texel sides of the atlas, to compare with the path tracer's bake of the same
+    // texels (core/atlas/TexelRadiance.h, reference/TexelBaker.h); and that atlas's texel maps.
+    atlas::TexelRadiance texelRadiance() const;
+    const atlas::Atlas& atlas() const;
+    const atlas::TexelMaps& texelMaps() const { return atlas().maps; }
     // The global direction omega of the i-th direction processed (its sequence and seed fixed by the
     // first iterate(), the order as the mode takes it): tests replay the mode's directions.
     glm::vec3 direction(std::uint32_t i) const;

@@ -53,10 +53,9 @@ ImageSet AtlasMode::resolve() {
                 recordHighlight(cmd);
             }
             const std::uint32_t scope = g.timer.start(cmd, "shade");
-            const VkDescriptorSet sets[] = {g.view.camera->set(), g.view.set};
+            const VkDescriptorSet sets[] = {g.view.camera->set(), g.view.bound.set()};
             g.view.shadePass.dispatch(cmd, push,
-                                 {vk::groupCount(width, shader::kAtlasViewGroupSize),
-                                  vk::groupCount(height, shader::kAtlasViewGroupSize), 1},
+                                 vk::groupCount(width, height, shader::kAtlasViewGroupSize),
                                  sets);
             g.timer.stop(cmd, scope);
             vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -13,6 +13,7 @@
 #include "modes/bidir/ReflectiveShadowMap.h"
 #include "modes/bidir/VplSampler.h"
 #include "scene/Scene.h"
+#include "vk/BoundSet.h"
 #include "vk/Commands.h"
 #include "vk/ComputePass.h"
 #include "vk/Descriptors.h"
@@ -53,48 +54,56 @@ std::unique_ptr<Mode> BidirMode::create(const Settings& settings) { return std::
 
 BidirMode::BidirMode(const Settings& settings) : mSettings(settings), mOptions(bidirOptions(settings)) {}
 
-struct BidirMode::Gpu {
-    std::unique_ptr<gpu::GpuScene> scene;
-    std::unique_ptr<gpu::CameraPass> camera;
+// Light sub-paths ([TO12 §4.1]): the lights' shadow cubes, the VPLs (traced or from reflective
+// shadow maps) with their cubes, the area emitters' points, and what was lost of them.
+struct BidirLightPaths {
     std::unique_ptr<gpu::ShadowCubePass> shadows;    // cube l = light l
     std::unique_ptr<gpu::ShadowCubePass> vplShadows; // cube k = VPL k
     std::unique_ptr<gpu::EmitterPointPass> emitterPoints; // area emitters: direct and one-bounce light
-    bool pairBundles = false;                             // a bundle per VPL/bundle pair
-    std::unique_ptr<BundlePool> pool;                // null for strategy = vpl
-    std::unique_ptr<DirectionSampler> directions;
     std::unique_ptr<VplSampler> vpls;
     std::unique_ptr<ReflectiveShadowMap> rsm; // vpl_source = rsm
-    std::unique_ptr<EnvironmentBundles> environment; // pool slots after the pairs'
-    std::unique_ptr<gpu::PackedTextures> textures;   // albedo at bundle hits
     vk::Buffer noRsm;                         // vpl_source = traced: the CDF block's header, N = 0
     vk::Buffer vplBuffer;
-    vk::DescriptorSetLayout setLayout;
-    vk::DescriptorPool descriptorPool;
-    VkDescriptorSet set = VK_NULL_HANDLE;
+    std::uint64_t invalidVpls = 0; // over all frames: VPLs that add nothing (escaped, black, back-lit or lost)
+    std::uint64_t lostVpls = 0;    // over all frames: VPLs whose record was not finite (never used)
+    std::uint64_t sampledVpls = 0; // over all frames: what invalidVpls and lostVpls are parts of
+};
+
+// Camera paths by bundles (the bundle strategy, [TO12 Eq. 5]): a bundle per VPL/bundle pair and
+// the environment's bundles in one pool, their directions and frames, and what their builds cost.
+struct BidirCameraBundles {
+    bool pairBundles = false;                        // a bundle per VPL/bundle pair
+    std::unique_ptr<BundlePool> pool;                // null for strategy = vpl
+    std::unique_ptr<DirectionSampler> directions;
+    std::unique_ptr<EnvironmentBundles> environment; // pool slots after the pairs'
+    std::unique_ptr<gpu::PackedTextures> textures;   // albedo at bundle hits
+    Bounds bounds;
+    std::vector<glm::vec3> visiblePoints; // fit = visible: this frame's G-buffer points
+    std::uint64_t nodesLast = 0;
+    std::uint64_t rebuilds = 0;
+    double pixelGainSum = 0.0;            // sum over bundles of (sphere frame's pixel / this frame's pixel)
+    std::uint64_t bundlesBuilt = 0;
+};
+
+struct BidirMode::Gpu {
+    std::unique_ptr<gpu::GpuScene> scene;
+    std::unique_ptr<gpu::CameraPass> camera;
+    BidirLightPaths light;
+    BidirCameraBundles bundles;
+    // The evaluation ([TO12 Eq. 3], [TO12 Eq. 7]): both strategies' contributions with their MIS weights.
+    vk::BoundSet bound;
     vk::ComputePass<shader::BidirPush> evaluate;
     vk::GpuTimer timer;
     // Host wall clock of each phase of a frame (submission, wait, read-back), beside the timestamps.
     PassTime wallGbuffer{"gbuffer (wall)"}, wallBundles{"bundles (wall)"}, wallVpls{"VPLs (wall)"},
         wallEvaluate{"shadow cubes + evaluate (wall)"};
-    Bounds bounds;
-    std::uint64_t nodesLast = 0;
-    std::uint64_t rebuilds = 0;
-    std::uint64_t invalidVpls = 0; // over all frames: VPLs that add nothing (escaped, black, back-lit or lost)
-    std::uint64_t lostVpls = 0;    // over all frames: VPLs whose record was not finite (never used)
-    std::uint64_t sampledVpls = 0; // over all frames: what invalidVpls and lostVpls are parts of
-    std::vector<glm::vec3> visiblePoints; // fit = visible: this frame's G-buffer points
-    double pixelGainSum = 0.0;            // sum over bundles of (sphere frame's pixel / this frame's pixel)
-    std::uint64_t bundlesBuilt = 0;
 };
 
 BidirMode::~BidirMode() = default;
 
 void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
-    if (!ctx) {
-        throw Error("mode bidir needs a Vulkan device");
-    }
+    mContext = &requireDevice(ctx, "bidir");
     mScene = &scene;
-    mContext = ctx;
     mIterations = 0;
     mPlan = plan(scene);
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
@@ -115,42 +124,42 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     auto g = std::make_unique<Gpu>();
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
     g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kBidirAccumLayers);
-    g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
+    g->light.shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
     // The constructor wants room for the lights' cubes too; VPL cubes use slots 0 .. K-1 only.
-    const auto vplCubes = std::max<std::uint32_t>(pairs, g->shadows->lightCount());
-    g->vplShadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(vplSide), vplCubes);
-    g->vpls = std::make_unique<VplSampler>(scene);
-    g->emitterPoints = std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene, areaLit ? points : 0u, pointSide);
-    if (o.rsmVpls && g->shadows->lightCount() > 0) {
-        g->rsm = std::make_unique<ReflectiveShadowMap>(*ctx, *g->scene, o.rsmResolution);
+    const auto vplCubes = std::max<std::uint32_t>(pairs, g->light.shadows->lightCount());
+    g->light.vplShadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(vplSide), vplCubes);
+    g->light.vpls = std::make_unique<VplSampler>(scene);
+    g->light.emitterPoints = std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene, areaLit ? points : 0u, pointSide);
+    if (o.rsmVpls && g->light.shadows->lightCount() > 0) {
+        g->light.rsm = std::make_unique<ReflectiveShadowMap>(*ctx, *g->scene, o.rsmResolution);
     } else {
-        g->noRsm = vk::Buffer(*ctx, 4 * shader::kBidirRsmHeaderWords, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+        g->light.noRsm = vk::Buffer(*ctx, 4 * shader::kBidirRsmHeaderWords, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               vk::MemoryUse::Upload);
-        std::memset(g->noRsm.data(), 0, 4 * shader::kBidirRsmHeaderWords);
+        std::memset(g->light.noRsm.data(), 0, 4 * shader::kBidirRsmHeaderWords);
     }
-    g->vplBuffer = vk::Buffer(*ctx, sizeof(shader::BidirVpl) * pairs, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+    g->light.vplBuffer = vk::Buffer(*ctx, sizeof(shader::BidirVpl) * pairs, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               vk::MemoryUse::Upload);
-    g->bounds = scene.bounds();
+    g->bundles.bounds = scene.bounds();
     setUpInterleaving(scene, width, height);
-    g->environment = std::make_unique<EnvironmentBundles>(
+    g->bundles.environment = std::make_unique<EnvironmentBundles>(
         *ctx, scene, mPlan.runs(kBidirPassEnvironment) ? o.environmentBundles : 0u, 0.1f);
-    g->textures = std::make_unique<gpu::PackedTextures>(*ctx, scene);
+    g->bundles.textures = std::make_unique<gpu::PackedTextures>(*ctx, scene);
     const bool pairBundles = mPlan.runs(kBidirPassBundles);
-    g->pairBundles = pairBundles;
+    g->bundles.pairBundles = pairBundles;
 
-    if (pairBundles || g->environment->count() > 0) {
+    if (pairBundles || g->bundles.environment->count() > 0) {
         if (!ctx->geometryShader()) {
             throw Error("bidir: strategy " + o.strategyName + " with bounces = " + std::to_string(o.bounces) +
                         " needs bundle hit payloads (gl_PrimitiveID: geometry shaders); use strategy=vpl bounces=1");
         }
         const std::uint32_t resolution = o.bundleResolution;
         BundlePoolOptions options;
-        options.slots = (pairBundles ? pairs : 0u) + g->environment->count();
+        options.slots = (pairBundles ? pairs : 0u) + g->bundles.environment->count();
         options.slotPixels = resolution * resolution;
         options.payload = BundlePayload::Hit;
         options.memoryCapBytes = o.memoryCapBytes;
         try {
-            g->pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
+            g->bundles.pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
         } catch (const Error& e) {
             throw Error("bidir: " + std::to_string(pairs) + " bundles of " + std::to_string(resolution) + "^2: " +
                         e.what() + " (lower pairs_per_frame or bundle_resolution, or raise memory_cap_mib)");
@@ -158,41 +167,21 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     }
     // A scope per bundle build and per VPL cube, plus the camera, light and evaluation passes.
     constexpr std::uint32_t kOtherScopes = 9;
-    g->timer = vk::GpuTimer(*ctx, 2 * pairs + g->environment->count() + kOtherScopes);
+    g->timer = vk::GpuTimer(*ctx, 2 * pairs + g->bundles.environment->count() + kOtherScopes);
 
     VkDevice device = ctx->device();
-    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    g->setLayout = vk::makeDescriptorSetLayout(
-        device, {{shader::kBidirBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kBidirBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kBidirBindingVplMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kBidirBindingVpls, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kBidirBindingEmitterPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kBidirBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kBidirBindingRsmCdf, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kBidirBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kBidirBindingTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kBidirBindingFrame, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kBidirBindingInterleave, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
-    g->descriptorPool = vk::DescriptorPool(device, 1, 8);
-    g->set = g->descriptorPool.allocate(g->setLayout.get());
-    vk::DescriptorWriter()
-        .buffer(shader::kBidirBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
-        .image(shader::kBidirBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->shadows->maps().view(),
-               VK_IMAGE_LAYOUT_GENERAL)
-        .image(shader::kBidirBindingVplMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->vplShadows->maps().view(),
-               VK_IMAGE_LAYOUT_GENERAL)
-        .buffer(shader::kBidirBindingVpls, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->vplBuffer.get())
-        .buffer(shader::kBidirBindingEmitterPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->emitterPoints->buffer())
-        .image(shader::kBidirBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->emitterPoints->maps().view(),
-               VK_IMAGE_LAYOUT_GENERAL)
-        .buffer(shader::kBidirBindingRsmCdf, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->rsm ? g->rsm->cdf() : g->noRsm.get())
-        .buffer(shader::kBidirBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->environment->buffer())
-        .buffer(shader::kBidirBindingTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->textures->buffer())
-        .image(shader::kBidirBindingFrame, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, mInterleave->frameView(),
-               VK_IMAGE_LAYOUT_GENERAL)
-        .buffer(shader::kBidirBindingInterleave, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, mInterleave->evaluateBuffer())
-        .update(device, g->set);
+    g->bound = vk::BoundSet(
+        device, {vk::Bound::storageBuffer(shader::kBidirBindingLights, g->scene->lightBuffer()),
+                 vk::Bound::storageImage(shader::kBidirBindingShadowMaps, g->light.shadows->maps().view()),
+                 vk::Bound::storageImage(shader::kBidirBindingVplMaps, g->light.vplShadows->maps().view()),
+                 vk::Bound::storageBuffer(shader::kBidirBindingVpls, g->light.vplBuffer.get()),
+                 vk::Bound::storageBuffer(shader::kBidirBindingEmitterPoints, g->light.emitterPoints->buffer()),
+                 vk::Bound::storageImage(shader::kBidirBindingEmitterShadowMaps, g->light.emitterPoints->maps().view()),
+                 vk::Bound::storageBuffer(shader::kBidirBindingRsmCdf, g->light.rsm ? g->light.rsm->cdf() : g->light.noRsm.get()),
+                 vk::Bound::storageBuffer(shader::kBidirBindingEnvironment, g->bundles.environment->buffer()),
+                 vk::Bound::storageBuffer(shader::kBidirBindingTextures, g->bundles.textures->buffer()),
+                 vk::Bound::storageImage(shader::kBidirBindingFrame, mInterleave->frameView()),
+                 vk::Bound::storageBuffer(shader::kBidirBindingInterleave, mInterleave->evaluateBuffer())});
     // EvaluateSpecialization.h, in its order: what the evaluation's paths depend on for the scene's life.
     const SceneFeatures features = scene.features();
     std::vector<std::uint32_t> specialization(shader::kBidirSpecCount);
@@ -202,11 +191,11 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
         mPlan.runs(kBidirPassSuppression) ? o.suppression : shader::kBidirSuppressionNone;
     specialization[shader::kBidirSpecGlossy] = features.glossy ? 1u : 0u;
     specialization[shader::kBidirSpecTextured] = features.textured ? 1u : 0u;
-    specialization[shader::kBidirSpecEnvironment] = g->environment->count() > 0 ? 1u : 0u;
-    specialization[shader::kBidirSpecRsm] = g->rsm ? 1u : 0u;
+    specialization[shader::kBidirSpecEnvironment] = g->bundles.environment->count() > 0 ? 1u : 0u;
+    specialization[shader::kBidirSpecRsm] = g->light.rsm ? 1u : 0u;
     specialization[shader::kBidirSpecVplTaps] = o.vplShadowTaps;
     g->evaluate = vk::ComputePass<shader::BidirPush>(device, kSpv_modes_bidir_evaluate_comp,
-                                                     {g->camera->setLayout(), g->setLayout.get()}, specialization);
+                                                     {g->camera->setLayout(), g->bound.layout()}, specialization);
     mInterleave->preparePipeline(g->camera->setLayout());
     mGpu = std::move(g);
 }
@@ -236,33 +225,33 @@ void BidirMode::setUpInterleaving(const Scene& scene, std::uint32_t width, std::
 // not fit (nothing partial is kept), and refuses what the limits cannot hold.
 void BidirMode::buildBundles(const IterationInfo& info) {
     Gpu& g = *mGpu;
-    const std::uint32_t slots = g.pool->slots();
-    const std::uint32_t pairSlots = slots - g.environment->count(); // then the environment's
+    const std::uint32_t slots = g.bundles.pool->slots();
+    const std::uint32_t pairSlots = slots - g.bundles.environment->count(); // then the environment's
     const std::uint32_t resolution = mOptions.bundleResolution;
     std::vector<shader::BundleFrame> frames(pairSlots);
     for (std::uint32_t k = 0; k < pairSlots; ++k) {
         const BundleDirection dir =
-            g.directions->sample(static_cast<std::uint32_t>(mInterleave->sequenceBase(mIterations, pairSlots) + k));
-        frames[k] = g.visiblePoints.empty() ? bundleFrameForSphere(dir.omega, dir.rotation, g.bounds.center(),
-                                                                   g.bounds.radius(), resolution)
-                                            : bundleFrameForPoints(dir.omega, dir.rotation, g.visiblePoints,
-                                                                   g.bounds.center(), g.bounds.radius(), resolution);
-        g.pixelGainSum += 2.0 * g.bounds.radius() / (double(resolution) * frames[k].pixelSize);
+            g.bundles.directions->sample(static_cast<std::uint32_t>(mInterleave->sequenceBase(mIterations, pairSlots) + k));
+        frames[k] = g.bundles.visiblePoints.empty() ? bundleFrameForSphere(dir.omega, dir.rotation, g.bundles.bounds.center(),
+                                                                   g.bundles.bounds.radius(), resolution)
+                                            : bundleFrameForPoints(dir.omega, dir.rotation, g.bundles.visiblePoints,
+                                                                   g.bundles.bounds.center(), g.bundles.bounds.radius(), resolution);
+        g.bundles.pixelGainSum += 2.0 * g.bundles.bounds.radius() / (double(resolution) * frames[k].pixelSize);
     }
-    g.bundlesBuilt += pairSlots;
-    const std::vector<shader::BundleFrame> environment = g.environment->frames(
-        mIterations, static_cast<std::uint32_t>(info.seed), pairSlots, g.visiblePoints, g.bounds, resolution);
+    g.bundles.bundlesBuilt += pairSlots;
+    const std::vector<shader::BundleFrame> environment = g.bundles.environment->frames(
+        mIterations, static_cast<std::uint32_t>(info.seed), pairSlots, g.bundles.visiblePoints, g.bundles.bounds, resolution);
     frames.insert(frames.end(), environment.begin(), environment.end());
-    g.nodesLast = buildFitting(*g.pool, {"bidir", slots, resolution}, [&] {
+    g.bundles.nodesLast = buildFitting(*g.bundles.pool, {"bidir", slots, resolution}, [&] {
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
-            g.pool->recordReset(cmd);
+            g.bundles.pool->recordReset(cmd);
             for (std::uint32_t k = 0; k < slots; ++k) {
-                g.pool->recordBuild(cmd, k, frames[k], BundleGeometry::triangles(info.time), &g.timer);
+                g.bundles.pool->recordBuild(cmd, k, frames[k], BundleGeometry::triangles(info.time), &g.timer);
             }
         });
         g.timer.collect();
-    }, g.rebuilds);
+    }, g.bundles.rebuilds);
 }
 
 void BidirMode::iterate(const IterationInfo& info) {
@@ -270,10 +259,10 @@ void BidirMode::iterate(const IterationInfo& info) {
     const BidirOptions& o = mOptions;
     const std::uint32_t pairs = o.pairs;
     const std::uint32_t strategy = o.strategy;
-    const std::uint32_t lightCount = g.shadows->lightCount();
-    if (!g.directions) {
+    const std::uint32_t lightCount = g.light.shadows->lightCount();
+    if (!g.bundles.directions) {
         // The seed decorrelates runs; directions are reproducible from (settings, seed).
-        g.directions = std::make_unique<DirectionSampler>(
+        g.bundles.directions = std::make_unique<DirectionSampler>(
             o.directions, static_cast<std::uint32_t>(info.seed));
     }
     // The G-buffer first: fit = visible fits this frame's bundles to the points it sees.
@@ -287,71 +276,71 @@ void BidirMode::iterate(const IterationInfo& info) {
         });
         g.timer.collect();
     }
-    if (g.pool) {
+    if (g.bundles.pool) {
         const WallSpan wall(g.wallBundles);
-        if (o.fitVisible) g.visiblePoints = g.camera->gbuffer().visiblePoints(*mContext);
+        if (o.fitVisible) g.bundles.visiblePoints = g.camera->gbuffer().visiblePoints(*mContext);
         buildBundles(info);
     }
     const bool useVpls = mPlan.runs(kBidirPassVpls);
     std::vector<shader::BidirVpl> vpls(pairs);
     if (useVpls) {
         const WallSpan wall(g.wallVpls);
-        vpls = g.rsm ? g.rsm->sample(mInterleave->sequenceBase(mIterations, pairs), pairs,
+        vpls = g.light.rsm ? g.light.rsm->sample(mInterleave->sequenceBase(mIterations, pairs), pairs,
                                      static_cast<std::uint32_t>(info.seed), info.time,
-                                     kVplLiftFraction * g.bounds.radius(), &g.timer)
-                     : g.vpls->sample(mInterleave->sequenceBase(mIterations, pairs), pairs, static_cast<std::uint32_t>(info.seed), info.time,
-                              kVplLiftFraction * g.bounds.radius());
+                                     kVplLiftFraction * g.bundles.bounds.radius(), &g.timer)
+                     : g.light.vpls->sample(mInterleave->sequenceBase(mIterations, pairs), pairs, static_cast<std::uint32_t>(info.seed), info.time,
+                              kVplLiftFraction * g.bundles.bounds.radius());
         for (shader::BidirVpl& v : vpls) {
             if (v.valid && !finiteVpl(v)) {
                 v.valid = 0u; // lost work, not a zero sample: counted apart and refused if it is all
-                ++g.lostVpls;
+                ++g.light.lostVpls;
             }
-            g.invalidVpls += v.valid ? 0u : 1u;
+            g.light.invalidVpls += v.valid ? 0u : 1u;
         }
-        g.sampledVpls += vpls.size();
+        g.light.sampledVpls += vpls.size();
     }
-    std::memcpy(g.vplBuffer.data(), vpls.data(), sizeof(shader::BidirVpl) * pairs);
+    std::memcpy(g.light.vplBuffer.data(), vpls.data(), sizeof(shader::BidirVpl) * pairs);
 
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
-    const bool renderShadows = mPlan.runs(kPassLightShadowCubes) && g.shadows->refreshFor(*mContext, *g.scene, info.time);
-    g.emitterPoints->prepare(info.seed, mIterations, info.time);
+    const bool renderShadows = mPlan.runs(kPassLightShadowCubes) && g.light.shadows->refreshFor(*mContext, *g.scene, info.time);
+    g.light.emitterPoints->prepare(info.seed, mIterations, info.time);
     shader::BidirPush push{};
-    if (g.pool) {
-        push.pool = g.pool->view();
+    if (g.bundles.pool) {
+        push.pool = g.bundles.pool->view();
     }
     push.width = width;
     push.height = height;
-    push.pairs = lightCount > 0 || g.pairBundles ? pairs : 0u;
+    push.pairs = lightCount > 0 || g.bundles.pairBundles ? pairs : 0u;
     push.lightCount = lightCount;
-    push.shadowResolution = g.shadows->resolution();
-    push.vplResolution = g.vplShadows->resolution();
+    push.shadowResolution = g.light.shadows->resolution();
+    push.vplResolution = g.light.vplShadows->resolution();
     push.strategy = strategy;
     // Uniform directions: every direction of a hemisphere has the same density (the axis is arbitrary).
-    push.hemispherePdf = g.directions->hemispherePdf(glm::vec3(0.0f, 0.0f, 1.0f));
+    push.hemispherePdf = g.bundles.directions->hemispherePdf(glm::vec3(0.0f, 0.0f, 1.0f));
     push.suppression = mPlan.runs(kBidirPassSuppression) ? o.suppression : shader::kBidirSuppressionNone;
     push.suppressionNeighbours = static_cast<float>(o.suppressionNeighbours);
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
     push.environmentRotation = g.scene->environmentRotation();
     push.samplePosition = sample.samplePosition;
     push.bounces = o.bounces;
-    const float minDistance = static_cast<float>(o.twoBounceClamp) * g.bounds.radius();
+    const float minDistance = static_cast<float>(o.twoBounceClamp) * g.bundles.bounds.radius();
     push.twoBounceMinDistance2 = minDistance * minDistance;
     std::optional<WallSpan> wall(std::in_place, g.wallEvaluate);
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         if (renderShadows) {
-            g.shadows->record(cmd, info.time, &g.timer);
+            g.light.shadows->record(cmd, info.time, &g.timer);
         }
-        g.emitterPoints->record(cmd, info.time, &g.timer);
+        g.light.emitterPoints->record(cmd, info.time, &g.timer);
         for (std::uint32_t k = 0; useVpls && k < pairs; ++k) {
             if (vpls[k].valid) {
-                g.vplShadows->record(cmd, vpls[k].cubeCentre, k, info.time, &g.timer);
+                g.light.vplShadows->record(cmd, vpls[k].cubeCentre, k, info.time, &g.timer);
             }
         }
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
         const std::uint32_t scope = g.timer.start(cmd, "evaluate");
         if (mInterleave->active()) mInterleave->recordClear(cmd);
-        const VkDescriptorSet sets[] = {g.camera->set(), g.set};
+        const VkDescriptorSet sets[] = {g.camera->set(), g.bound.set()};
         g.evaluate.dispatch(cmd, push,
                             {vk::groupCount(mInterleave->dispatchWidth(), shader::kBidirGroupSize),
                              vk::groupCount(mInterleave->dispatchHeight(), shader::kBidirGroupSize), 1},
@@ -381,25 +370,25 @@ ImageSet BidirMode::resolve() {
     // A VPL whose light ray escaped or met a black surface (or the back of one) is a sample of
     // zero, a valid estimate (a point light outside a closed box lights nothing inside it); only
     // VPLs whose record is not finite are lost work. That every VPL is zero is still worth saying.
-    out.counters.emplace_back("invalid_vpls", double(g.invalidVpls));
-    out.lost.push_back({"non_finite_vpls", g.lostVpls, g.sampledVpls, "VPLs", "were not finite and left out"});
-    if (g.invalidVpls == g.sampledVpls && g.lostVpls < g.sampledVpls) { // all lost: refused instead
-        out.notes.push_back("all " + std::to_string(g.sampledVpls - g.lostVpls) +
+    out.counters.emplace_back("invalid_vpls", double(g.light.invalidVpls));
+    out.lost.push_back({"non_finite_vpls", g.light.lostVpls, g.light.sampledVpls, "VPLs", "were not finite and left out"});
+    if (g.light.invalidVpls == g.light.sampledVpls && g.light.lostVpls < g.light.sampledVpls) { // all lost: refused instead
+        out.notes.push_back("all " + std::to_string(g.light.sampledVpls - g.light.lostVpls) +
                             " VPLs carry no light (their light rays escaped or met black surfaces or the backs of "
                             "them), so the image has no light reflected from a VPL; if the scene should, raise "
                             "pairs_per_frame or iterations (invalid_vpls)");
     }
-    if (g.rsm) {
-        out.counters.emplace_back("rsm_texel_mismatches", double(g.rsm->texelMismatches()));
+    if (g.light.rsm) {
+        out.counters.emplace_back("rsm_texel_mismatches", double(g.light.rsm->texelMismatches()));
     }
-    if (g.pool) {
-        out.counters.emplace_back("bundle_nodes_last", double(g.nodesLast));
-        out.counters.emplace_back("bundle_pool_rebuilds", double(g.rebuilds));
+    if (g.bundles.pool) {
+        out.counters.emplace_back("bundle_nodes_last", double(g.bundles.nodesLast));
+        out.counters.emplace_back("bundle_pool_rebuilds", double(g.bundles.rebuilds));
         // bundle_resolution x the mean ratio of the sphere frame's pixel to the one used: the side of a
         // sphere-fitted bundle with the same pixels (fit = scene: bundle_resolution).
         out.counters.emplace_back("bundle_effective_resolution",
-                                  g.bundlesBuilt ? double(mOptions.bundleResolution) * g.pixelGainSum /
-                                                       double(g.bundlesBuilt)
+                                  g.bundles.bundlesBuilt ? double(mOptions.bundleResolution) * g.bundles.pixelGainSum /
+                                                       double(g.bundles.bundlesBuilt)
                                                  : 0.0);
     }
     return out;

@@ -40,19 +40,9 @@ Interleaving::Interleaving(const vk::Context& ctx, std::uint32_t width, std::uin
     });
 
     VkDevice device = ctx.device();
-    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    mSetLayout = vk::makeDescriptorSetLayout(
-        device, {{shader::kInterleaveBindingFrame, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kInterleaveBindingCaches, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kInterleaveBindingCameras, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
-    mPool = vk::DescriptorPool(device, 1, 2);
-    mSet = mPool.allocate(mSetLayout.get());
-    vk::DescriptorWriter()
-        .image(shader::kInterleaveBindingFrame, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, mFrame.view(), VK_IMAGE_LAYOUT_GENERAL)
-        .image(shader::kInterleaveBindingCaches, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, mCaches.view(),
-               VK_IMAGE_LAYOUT_GENERAL)
-        .buffer(shader::kInterleaveBindingCameras, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, mCacheInfo.get())
-        .update(device, mSet);
+    mBound = vk::BoundSet(device, {vk::Bound::storageImage(shader::kInterleaveBindingFrame, mFrame.view()),
+                                   vk::Bound::storageImage(shader::kInterleaveBindingCaches, mCaches.view()),
+                                   vk::Bound::storageBuffer(shader::kInterleaveBindingCameras, mCacheInfo.get())});
 }
 
 bool Interleaving::matches(std::uint32_t width, std::uint32_t height, const InterleaveOptions& o) const {
@@ -63,7 +53,7 @@ bool Interleaving::matches(std::uint32_t width, std::uint32_t height, const Inte
 void Interleaving::preparePipeline(VkDescriptorSetLayout cameraSetLayout) {
     VkDevice device = mContext->device();
     mFilter = vk::ComputePass<shader::InterleavePush>(device, kSpv_modes_bidir_interleave_comp,
-                                                      {cameraSetLayout, mSetLayout.get()});
+                                                      {cameraSetLayout, mBound.layout()});
 }
 
 std::uint32_t Interleaving::dispatchWidth() const {
@@ -129,7 +119,7 @@ void Interleaving::recordResolve(VkCommandBuffer cmd, VkDescriptorSet cameraSet,
     push.twoSigma2 = mOptions.twoSigma2;
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     const std::uint32_t scope = timer ? timer->start(cmd, "interleave filter/reconstruct") : 0;
-    const VkDescriptorSet sets[] = {cameraSet, mSet};
+    const VkDescriptorSet sets[] = {cameraSet, mBound.set()};
     mFilter.dispatch(cmd, push,
                      {vk::groupCount(mWidth, shader::kInterleaveGroupSize), vk::groupCount(mHeight, shader::kInterleaveGroupSize), 1},
                      sets);

@@ -17,7 +17,7 @@
 #include "gpu/CameraPass.h"
 #include "image/Image.h"
 #include "vk/Buffer.h"
-#include "vk/Descriptors.h"
+#include "vk/BoundSet.h"
 #include "vk/GpuImage.h"
 #include "vk/GpuTimer.h"
 #include "vk/ComputePass.h"
@@ -81,9 +81,7 @@ private:
     vk::GpuImage mCaches;
     vk::Buffer mCacheInfo;
     vk::Buffer mEvaluate;
-    vk::DescriptorSetLayout mSetLayout;
-    vk::DescriptorPool mPool;
-    VkDescriptorSet mSet = VK_NULL_HANDLE;
+    vk::BoundSet mBound;
     vk::ComputePass<shader::InterleavePush> mFilter;
 };
 

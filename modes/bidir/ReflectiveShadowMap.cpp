@@ -46,15 +46,16 @@ ReflectiveShadowMap::ReflectiveShadowMap(const vk::Context& ctx, const gpu::GpuS
     for (const Material& m : scene.scene().materials) mMaterials.push_back(toGpuMaterial(m));
 
     VkDevice device = ctx.device();
-    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    mSetLayout = vk::makeDescriptorSetLayout(device, {{shader::kBidirRsmBindingPosition, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                                                      {shader::kBidirRsmBindingNormal, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                                                      {shader::kBidirRsmBindingAlbedo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                                                      {shader::kBidirRsmBindingCdf, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                                                      {shader::kBidirRsmBindingTexels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}});
-    mPool = vk::DescriptorPool(device, 1, 4);
-    mSet = mPool.allocate(mSetLayout.get());
-    mSample = vk::ComputePass<shader::BidirRsmPush>(device, kSpv_modes_bidir_rsm_sample_comp, {mSetLayout.get()});
+    // Room for one VPL's texel until sample() asks for more.
+    mCapacity = 1;
+    mTexels = vk::Buffer(ctx, sizeof(shader::BidirRsmTexel), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Readback);
+    mBound = vk::BoundSet(
+        device, {vk::Bound::storageImage(shader::kBidirRsmBindingPosition, mFace->attachment(shader::kGBufferPosition).view()),
+                 vk::Bound::storageImage(shader::kBidirRsmBindingNormal, mFace->attachment(shader::kGBufferNormal).view()),
+                 vk::Bound::storageImage(shader::kBidirRsmBindingAlbedo, mFace->attachment(shader::kGBufferAlbedo).view()),
+                 vk::Bound::storageBuffer(shader::kBidirRsmBindingCdf, mCdf.get()),
+                 vk::Bound::storageBuffer(shader::kBidirRsmBindingTexels, mTexels.get())});
+    mSample = vk::ComputePass<shader::BidirRsmPush>(device, kSpv_modes_bidir_rsm_sample_comp, {mBound.layout()});
 }
 
 void ReflectiveShadowMap::buildCdf(const std::vector<shader::GpuLight>& lights) {
@@ -118,16 +119,7 @@ std::vector<shader::BidirVpl> ReflectiveShadowMap::sample(std::uint64_t first, s
         mCapacity = count;
         mTexels = vk::Buffer(*mCtx, sizeof(shader::BidirRsmTexel) * count, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                              vk::MemoryUse::Readback);
-        vk::DescriptorWriter()
-            .image(shader::kBidirRsmBindingPosition, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                   mFace->attachment(shader::kGBufferPosition).view(), VK_IMAGE_LAYOUT_GENERAL)
-            .image(shader::kBidirRsmBindingNormal, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                   mFace->attachment(shader::kGBufferNormal).view(), VK_IMAGE_LAYOUT_GENERAL)
-            .image(shader::kBidirRsmBindingAlbedo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                   mFace->attachment(shader::kGBufferAlbedo).view(), VK_IMAGE_LAYOUT_GENERAL)
-            .buffer(shader::kBidirRsmBindingCdf, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, mCdf.get())
-            .buffer(shader::kBidirRsmBindingTexels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, mTexels.get())
-            .update(mCtx->device(), mSet);
+        mBound.rebind(shader::kBidirRsmBindingTexels, mTexels.get());
     }
     auto* texels = static_cast<shader::BidirRsmTexel*>(mTexels.data());
     std::memset(texels, 0, sizeof(shader::BidirRsmTexel) * count);
@@ -166,7 +158,7 @@ std::vector<shader::BidirVpl> ReflectiveShadowMap::sample(std::uint64_t first, s
                 vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
                 push.light = l;
                 push.face = face;
-                mSample.dispatch(cmd, push, vk::groupCount(count, shader::kBidirRsmGroupSize), {&mSet, 1});
+                mSample.dispatch(cmd, push, vk::groupCount(count, shader::kBidirRsmGroupSize), mBound.sets());
                 vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                   VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT);
             }

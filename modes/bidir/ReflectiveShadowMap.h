@@ -19,7 +19,7 @@
 #include "gpu/GBufferPass.h"
 #include "scene/Scene.h"
 #include "vk/Buffer.h"
-#include "vk/Descriptors.h"
+#include "vk/BoundSet.h"
 #include "vk/GpuTimer.h"
 #include "vk/ComputePass.h"
 
@@ -64,9 +64,7 @@ private:
     std::vector<std::uint32_t> mStart;        // host copy of start[]
     std::optional<double> mCdfTime;           // lights at this time built the CDF
     std::vector<shader::GpuMaterial> mMaterials;
-    vk::DescriptorSetLayout mSetLayout;
-    vk::DescriptorPool mPool;
-    VkDescriptorSet mSet = VK_NULL_HANDLE;
+    vk::BoundSet mBound;
     vk::ComputePass<shader::BidirRsmPush> mSample;
     std::uint64_t mMismatches = 0;
 };

@@ -13,6 +13,7 @@
 #include "modes/LightShadowPass.h"
 #include "modes/multibounce/SurfacePoints.h"
 #include "scene/Scene.h"
+#include "vk/BoundSet.h"
 #include "vk/Commands.h"
 #include "vk/ComputePass.h"
 #include "vk/Descriptors.h"
@@ -89,9 +90,7 @@ struct MultibounceMode::Gpu {
     std::unique_ptr<gpu::PackedTextures> textures;
     vk::Buffer emitters;
     std::uint32_t emitterCount = 0;
-    vk::DescriptorSetLayout setLayout;
-    vk::DescriptorPool descriptorPool;
-    VkDescriptorSet set = VK_NULL_HANDLE;
+    vk::BoundSet bound;
     vk::ComputePass<shader::MultibouncePush> paths;
     vk::GpuTimer timer;
     Bounds bounds;
@@ -157,11 +156,8 @@ PassPlan MultibounceMode::plan(const Scene& scene) const {
 }
 
 void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
-    if (!ctx) {
-        throw Error("mode multibounce needs a Vulkan device");
-    }
+    mContext = &requireDevice(ctx, "multibounce");
     mScene = &scene;
-    mContext = ctx;
     mIterations = 0;
     mPlan = plan(scene);
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
@@ -219,34 +215,19 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
     VkDevice device = ctx->device();
-    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    g->setLayout = vk::makeDescriptorSetLayout(
-        device, {{shader::kMultibounceBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kMultibounceBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kMultibounceBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kMultibounceBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kMultibounceBindingSplats, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kMultibounceBindingTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kMultibounceBindingEmitterPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kMultibounceBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-    g->descriptorPool = vk::DescriptorPool(device, 1, 6);
-    g->set = g->descriptorPool.allocate(g->setLayout.get());
-    vk::DescriptorWriter()
-        .buffer(shader::kMultibounceBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
-        .image(shader::kMultibounceBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->shadows->maps().view(),
-               VK_IMAGE_LAYOUT_GENERAL)
-        .buffer(shader::kMultibounceBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->emitters.get())
-        .buffer(shader::kMultibounceBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                g->points ? g->points->pointBuffer() : g->noPoints.get())
-        .buffer(shader::kMultibounceBindingSplats, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                g->points ? g->points->splatBuffer() : g->noPoints.get())
-        .buffer(shader::kMultibounceBindingTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->textures->buffer())
-        .buffer(shader::kMultibounceBindingEmitterPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->emitterPoints->buffer())
-        .image(shader::kMultibounceBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-               g->emitterPoints->maps().view(), VK_IMAGE_LAYOUT_GENERAL)
-        .update(device, g->set);
+    const VkBuffer points = g->points ? g->points->pointBuffer() : g->noPoints.get();
+    const VkBuffer splats = g->points ? g->points->splatBuffer() : g->noPoints.get();
+    g->bound = vk::BoundSet(
+        device, {vk::Bound::storageBuffer(shader::kMultibounceBindingLights, g->scene->lightBuffer()),
+                 vk::Bound::storageImage(shader::kMultibounceBindingShadowMaps, g->shadows->maps().view()),
+                 vk::Bound::storageBuffer(shader::kMultibounceBindingEmitters, g->emitters.get()),
+                 vk::Bound::storageBuffer(shader::kMultibounceBindingPoints, points),
+                 vk::Bound::storageBuffer(shader::kMultibounceBindingSplats, splats),
+                 vk::Bound::storageBuffer(shader::kMultibounceBindingTextures, g->textures->buffer()),
+                 vk::Bound::storageBuffer(shader::kMultibounceBindingEmitterPoints, g->emitterPoints->buffer()),
+                 vk::Bound::storageImage(shader::kMultibounceBindingEmitterShadowMaps, g->emitterPoints->maps().view())});
     g->paths = vk::ComputePass<shader::MultibouncePush>(device, kSpv_modes_multibounce_paths_comp,
-                                                        {g->camera->setLayout(), g->setLayout.get()});
+                                                        {g->camera->setLayout(), g->bound.layout()});
     mGpu = std::move(g);
 }
 
@@ -323,10 +304,9 @@ void MultibounceMode::iterate(const IterationInfo& info) {
         g.emitterPoints->record(cmd, info.time, &g.timer);
         g.camera->record(cmd, sample, &g.timer);
         const std::uint32_t scope = g.timer.start(cmd, "paths");
-        const VkDescriptorSet sets[] = {g.camera->set(), g.set};
+        const VkDescriptorSet sets[] = {g.camera->set(), g.bound.set()};
         g.paths.dispatch(cmd, push,
-                         {vk::groupCount(width, shader::kMultibounceGroupSize),
-                          vk::groupCount(height, shader::kMultibounceGroupSize), 1},
+                         vk::groupCount(width, height, shader::kMultibounceGroupSize),
                          sets);
         g.timer.stop(cmd, scope);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -76,27 +76,14 @@ SurfacePoints::SurfacePoints(const vk::Context& ctx, const gpu::GpuScene& scene,
     mPoints = vk::Buffer(ctx, count * sizeof(shader::MultibouncePoint), kStorage, vk::MemoryUse::Device);
 
     VkDevice device = ctx.device();
-    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    const VkDescriptorType sb = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    mSetLayout = vk::makeDescriptorSetLayout(device, {{shader::kMultibouncePointsBindingCdf, sb, cs},
-                                                      {shader::kMultibouncePointsBindingDraws, sb, cs},
-                                                      {shader::kMultibouncePointsBindingVertices, sb, cs},
-                                                      {shader::kMultibouncePointsBindingIndices, sb, cs},
-                                                      {shader::kMultibouncePointsBindingPlanes, sb, cs},
-                                                      {shader::kMultibouncePointsBindingSplats, sb, cs},
-                                                      {shader::kMultibouncePointsBindingPoints, sb, cs}});
-    mDescriptorPool = vk::DescriptorPool(device, 1, 8);
-    mSet = mDescriptorPool.allocate(mSetLayout.get());
-    vk::DescriptorWriter()
-        .buffer(shader::kMultibouncePointsBindingCdf, sb, mCdf.get())
-        .buffer(shader::kMultibouncePointsBindingDraws, sb, mDraws.get())
-        .buffer(shader::kMultibouncePointsBindingVertices, sb, scene.vertexBuffer())
-        .buffer(shader::kMultibouncePointsBindingIndices, sb, scene.indexBuffer())
-        .buffer(shader::kMultibouncePointsBindingPlanes, sb, scene.planeBuffer())
-        .buffer(shader::kMultibouncePointsBindingSplats, sb, mSplats.get())
-        .buffer(shader::kMultibouncePointsBindingPoints, sb, mPoints.get())
-        .update(device, mSet);
-    mSample = vk::ComputePass<shader::MultibouncePointsPush>(device, kSpv_modes_multibounce_points_comp, {mSetLayout.get()});
+    mBound = vk::BoundSet(device, {vk::Bound::storageBuffer(shader::kMultibouncePointsBindingCdf, mCdf.get()),
+                                   vk::Bound::storageBuffer(shader::kMultibouncePointsBindingDraws, mDraws.get()),
+                                   vk::Bound::storageBuffer(shader::kMultibouncePointsBindingVertices, scene.vertexBuffer()),
+                                   vk::Bound::storageBuffer(shader::kMultibouncePointsBindingIndices, scene.indexBuffer()),
+                                   vk::Bound::storageBuffer(shader::kMultibouncePointsBindingPlanes, scene.planeBuffer()),
+                                   vk::Bound::storageBuffer(shader::kMultibouncePointsBindingSplats, mSplats.get()),
+                                   vk::Bound::storageBuffer(shader::kMultibouncePointsBindingPoints, mPoints.get())});
+    mSample = vk::ComputePass<shader::MultibouncePointsPush>(device, kSpv_modes_multibounce_points_comp, {mBound.layout()});
 }
 
 void SurfacePoints::record(VkCommandBuffer cmd, std::uint32_t seed, std::uint32_t iteration, double time,
@@ -119,7 +106,7 @@ void SurfacePoints::record(VkCommandBuffer cmd, std::uint32_t seed, std::uint32_
     push.textured = mScene->features().textured ? 1u : 0u;
     const std::uint32_t groups = vk::groupCount(push.count, shader::kMultibouncePointsGroupSize);
     const std::uint32_t rowGroups = std::min(groups, kGroupsPerRow);
-    mSample.dispatch(cmd, push, {rowGroups, vk::groupCount(groups, rowGroups), 1}, {&mSet, 1});
+    mSample.dispatch(cmd, push, {rowGroups, vk::groupCount(groups, rowGroups), 1}, mBound.sets());
     if (timer) timer->stop(cmd, scope);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |

@@ -18,7 +18,7 @@
 
 #include "gpu/GpuScene.h"
 #include "vk/Buffer.h"
-#include "vk/Descriptors.h"
+#include "vk/BoundSet.h"
 #include "vk/GpuTimer.h"
 #include "vk/ComputePass.h"
 
@@ -59,9 +59,7 @@ private:
     vk::Buffer mDraws;
     vk::Buffer mSplats;
     vk::Buffer mPoints;
-    vk::DescriptorSetLayout mSetLayout;
-    vk::DescriptorPool mDescriptorPool;
-    VkDescriptorSet mSet = VK_NULL_HANDLE;
+    vk::BoundSet mBound;
     vk::ComputePass<shader::MultibouncePointsPush> mSample;
 };
 

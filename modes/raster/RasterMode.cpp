@@ -5,6 +5,7 @@
 #include "modes/LightShadowPass.h"
 #include "sampling/PixelSamples.h"
 #include "scene/Scene.h"
+#include "vk/BoundSet.h"
 #include "vk/Commands.h"
 #include "vk/ComputePass.h"
 #include "vk/Descriptors.h"
@@ -38,9 +39,7 @@ struct RasterMode::Gpu {
     std::unique_ptr<gpu::CameraPass> camera;
     std::unique_ptr<gpu::ShadowCubePass> shadows;
     std::unique_ptr<gpu::EmitterPointPass> emitterPoints;
-    vk::DescriptorSetLayout setLayout;
-    vk::DescriptorPool pool;
-    VkDescriptorSet set = VK_NULL_HANDLE;
+    vk::BoundSet bound;
     vk::ComputePass<shader::RasterPush> shade;
     vk::GpuTimer timer;
 };
@@ -81,11 +80,8 @@ PassPlan RasterMode::plan(const Scene& scene) const {
 }
 
 void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
-    if (!ctx) {
-        throw Error("mode raster needs a Vulkan device");
-    }
+    mContext = &requireDevice(ctx, "raster");
     mScene = &scene;
-    mContext = ctx;
     mIterations = 0;
     mPlan = plan(scene);
     VkDevice device = ctx->device();
@@ -111,24 +107,13 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
                                                                mPlan.runs(kPassEmitterPoints) ? points : 0u, pointSide);
     g->timer = vk::GpuTimer(*ctx);
 
-    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    g->setLayout = vk::makeDescriptorSetLayout(
-        device, {{shader::kRasterBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kRasterBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs},
-                 {shader::kRasterBindingEmitterPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                 {shader::kRasterBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-    g->pool = vk::DescriptorPool(device, 1, 2);
-    g->set = g->pool.allocate(g->setLayout.get());
-    vk::DescriptorWriter()
-        .buffer(shader::kRasterBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->scene->lightBuffer())
-        .image(shader::kRasterBindingShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, g->shadows->maps().view(),
-               VK_IMAGE_LAYOUT_GENERAL)
-        .buffer(shader::kRasterBindingEmitterPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, g->emitterPoints->buffer())
-        .image(shader::kRasterBindingEmitterShadowMaps, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-               g->emitterPoints->maps().view(), VK_IMAGE_LAYOUT_GENERAL)
-        .update(device, g->set);
+    g->bound = vk::BoundSet(
+        device, {vk::Bound::storageBuffer(shader::kRasterBindingLights, g->scene->lightBuffer()),
+                 vk::Bound::storageImage(shader::kRasterBindingShadowMaps, g->shadows->maps().view()),
+                 vk::Bound::storageBuffer(shader::kRasterBindingEmitterPoints, g->emitterPoints->buffer()),
+                 vk::Bound::storageImage(shader::kRasterBindingEmitterShadowMaps, g->emitterPoints->maps().view())});
     g->shade = vk::ComputePass<shader::RasterPush>(device, kSpv_modes_raster_shade_comp,
-                                                   {g->camera->setLayout(), g->setLayout.get()});
+                                                   {g->camera->setLayout(), g->bound.layout()});
     mGpu = std::move(g);
 }
 
@@ -157,9 +142,9 @@ void RasterMode::iterate(const IterationInfo& info) {
         push.samplePosition = sample.samplePosition;
         push.width = width;
         push.height = height;
-        const VkDescriptorSet sets[] = {g.camera->set(), g.set};
+        const VkDescriptorSet sets[] = {g.camera->set(), g.bound.set()};
         g.shade.dispatch(cmd, push,
-                         {vk::groupCount(width, shader::kRasterGroupSize), vk::groupCount(height, shader::kRasterGroupSize), 1},
+                         vk::groupCount(width, height, shader::kRasterGroupSize),
                          sets);
         g.timer.stop(cmd, scope);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

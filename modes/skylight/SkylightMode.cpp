@@ -6,6 +6,7 @@
 #include "bundle/DepthMapPass.h"
 #include "modes/skylight/IrradianceTable.h"
 #include "scene/Scene.h"
+#include "vk/BoundSet.h"
 #include "vk/Commands.h"
 #include "vk/ComputePass.h"
 
@@ -69,9 +70,7 @@ struct SkylightMode::Gpu {
     std::unique_ptr<DirectionSampler> directions;
     vk::Buffer irradiance; // control_variate = on: IrradianceTable entries
     vk::Buffer frame;
-    vk::DescriptorSetLayout setLayout;
-    vk::DescriptorPool pool;
-    VkDescriptorSet set = VK_NULL_HANDLE;
+    vk::BoundSet bound;
     vk::ComputePass<shader::SkylightPush> visibility;
     vk::GpuTimer timer;
     std::vector<glm::vec3> visiblePoints; // for fit = visible: this iteration's
@@ -104,11 +103,8 @@ PassPlan SkylightMode::plan(const Scene& scene) const {
 }
 
 void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
-    if (!ctx) {
-        throw Error("mode skylight needs a Vulkan device");
-    }
+    mContext = &requireDevice(ctx, "skylight");
     mScene = &scene;
-    mContext = ctx;
     mIterations = 0;
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
@@ -143,19 +139,12 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->timer = vk::GpuTimer(*ctx);
 
     VkDevice device = ctx->device();
-    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    g->setLayout = vk::makeDescriptorSetLayout(
-        device, {{shader::kSkylightBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
-                 {shader::kSkylightBindingDepthMap, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}});
-    g->pool = vk::DescriptorPool(device, 1, 1);
-    g->set = g->pool.allocate(g->setLayout.get());
-    vk::DescriptorWriter()
-        .buffer(shader::kSkylightBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, g->frame.get())
-        .image(shader::kSkylightBindingDepthMap, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-               depthMapVisibility ? g->depthMap->map().view() : g->placeholder.view(), VK_IMAGE_LAYOUT_GENERAL)
-        .update(device, g->set);
+    g->bound = vk::BoundSet(
+        device, {vk::Bound::uniformBuffer(shader::kSkylightBindingFrame, g->frame.get()),
+                 vk::Bound::storageImage(shader::kSkylightBindingDepthMap,
+                                         depthMapVisibility ? g->depthMap->map().view() : g->placeholder.view())});
     g->visibility = vk::ComputePass<shader::SkylightPush>(device, kSpv_modes_skylight_visibility_comp,
-                                                          {g->camera->setLayout(), g->setLayout.get()});
+                                                          {g->camera->setLayout(), g->bound.layout()});
 
     if (g->placeholder.get()) {
         ctx->submitAndWait([&](VkCommandBuffer cmd) { vk::transitionImage(cmd, g->placeholder.get(), vk::ImageTransition{}); });
@@ -218,9 +207,9 @@ void SkylightMode::iterate(const IterationInfo& info) {
     }
     auto dispatchVisibility = [&](VkCommandBuffer cmd) {
         std::uint32_t scope = g.timer.start(cmd, "visibility");
-        const VkDescriptorSet sets[] = {g.camera->set(), g.set};
+        const VkDescriptorSet sets[] = {g.camera->set(), g.bound.set()};
         g.visibility.dispatch(
-            cmd, push, {vk::groupCount(width, shader::kSkylightGroupSize), vk::groupCount(height, shader::kSkylightGroupSize), 1},
+            cmd, push, vk::groupCount(width, height, shader::kSkylightGroupSize),
             sets);
         g.timer.stop(cmd, scope);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -273,6 +273,26 @@ atlas_report)
     expected="--texels-per-unit: value 'inf' is not finite"
     expect_error "$bl" atlas data/cornell-box/cornell.toml --texels-per-unit inf
     ;;
+bench_texels)
+    # The atlas judged over every texel against the path tracer baking the same texels: the table,
+    # the CSV and the texel sides as EXR layers; an atlas whose texels were read back on the wrong
+    # side or index would sit at relMSE ~1 against the bake, not near the baker's own noise.
+    "$bl" bench texels data/cornell-box/cornell.toml --width 16 --height 16 --set atlas_resolution=32 \
+        --set bundle_resolution=64 --directions 8 --directions 32 --bake-spp 4 --reference-spp 64 --image-spp 4 \
+        --image-reference-spp 16 --csv "$out/t.csv" --exr "$out/t.exr" >"$out/log.txt" 2>&1 || { cat "$out/log.txt"; fail "bench texels failed"; }
+    grep -q "^| atlas | 32 directions |" "$out/log.txt" || { cat "$out/log.txt"; fail "no atlas row"; }
+    grep -q "charts' border texels" "$out/log.txt" || fail "no border/interior split"
+    awk -F, '$1 == "atlas" && $2 == 32 { ok = ($4 > 0 && $4 < 0.2) } END { exit !ok }' "$out/t.csv" ||
+        { cat "$out/t.csv"; fail "atlas texel relMSE at 32 directions not in (0, 0.2)"; }
+    awk -F, '$1 == "baker" { ok = ($4 > 0 && $4 < 0.2) } END { exit !ok }' "$out/t.csv" ||
+        { cat "$out/t.csv"; fail "baker texel relMSE not in (0, 0.2)"; }
+    "$bl" stats "$out/t.exr" >"$out/stats.txt" || fail "stats failed"
+    for layer in atlas.front atlas.back reference.front reference.back; do
+        grep -q "^$layer 32x32 " "$out/stats.txt" || { cat "$out/stats.txt"; fail "no layer $layer"; }
+    done
+    expected="is animated; the texel-space reference bakes one moment"
+    expect_error "$bl" bench texels data/cornell-box/cornell-animated.toml
+    ;;
 *)
     fail "unknown case $case_name"
     ;;

@@ -41,7 +41,7 @@ struct FurnaceStats {
     std::size_t counted = 0;
 };
 FurnaceStats furnaceStats(const Mode& mode, double expected) {
-    const AtlasMode::TexelRadiance texels = static_cast<const AtlasMode&>(mode).readTexels();
+    const AtlasMode::TexelReadback texels = static_cast<const AtlasMode&>(mode).readTexels();
     FurnaceStats f;
     double areaSum = 0.0;
     for (std::size_t t = 0; t < texels.area.size(); ++t) {
@@ -80,7 +80,7 @@ double meanOf(const std::vector<double>& values) {
 
 // The furnace's inner-side radiance of every texel with area (index order fixed by the atlas).
 std::vector<double> furnaceTexels(const Mode& mode) {
-    const AtlasMode::TexelRadiance texels = static_cast<const AtlasMode&>(mode).readTexels();
+    const AtlasMode::TexelReadback texels = static_cast<const AtlasMode&>(mode).readTexels();
     std::vector<double> out;
     for (std::size_t t = 0; t < texels.area.size(); ++t) {
         if (texels.area[t] > 0.0f) out.push_back(texels.emission[t].x + texels.reflected[2 * t].x);

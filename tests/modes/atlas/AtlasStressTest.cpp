@@ -74,7 +74,7 @@ struct FurnaceStats {
 };
 
 FurnaceStats furnaceStats(const Mode& mode) {
-    const AtlasMode::TexelRadiance texels = static_cast<const AtlasMode&>(mode).readTexels();
+    const AtlasMode::TexelReadback texels = static_cast<const AtlasMode&>(mode).readTexels();
     FurnaceStats f;
     double areaSum = 0.0;
     for (std::size_t t = 0; t < texels.area.size(); ++t) {

@@ -1,0 +1,82 @@
+#include "vk/BoundSet.h"
+
+#include "base/Error.h"
+
+#include <algorithm>
+#include <map>
+#include <string>
+
+namespace bl::vk {
+
+Bound Bound::storageBuffer(std::uint32_t binding, VkBuffer buffer) {
+    return {binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, buffer};
+}
+
+Bound Bound::uniformBuffer(std::uint32_t binding, VkBuffer buffer) {
+    return {binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, buffer};
+}
+
+Bound Bound::storageImage(std::uint32_t binding, VkImageView view) {
+    return {binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_NULL_HANDLE, view, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
+}
+
+Bound Bound::sampledImage(std::uint32_t binding, VkImageView view, VkSampler sampler) {
+    return {binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, view, sampler,
+            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+}
+
+BoundSet::BoundSet(VkDevice device, std::initializer_list<Bound> bindings, VkShaderStageFlags stages)
+    : mDevice(device), mBindings(bindings) {
+    std::vector<Binding> layout;
+    std::map<VkDescriptorType, std::uint32_t> perType;
+    for (const Bound& b : mBindings) {
+        const bool isBuffer = b.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        if (isBuffer ? b.buffer == VK_NULL_HANDLE : b.view == VK_NULL_HANDLE) {
+            throw Error("descriptor set: binding " + std::to_string(b.binding) + " is given no resource");
+        }
+        if (std::count_if(mBindings.begin(), mBindings.end(), [&](const Bound& o) { return o.binding == b.binding; }) > 1) {
+            throw Error("descriptor set: binding " + std::to_string(b.binding) + " is listed twice");
+        }
+        layout.push_back({b.binding, b.type, stages});
+        ++perType[b.type];
+    }
+    mLayout = makeDescriptorSetLayout(device, layout);
+    std::uint32_t most = 1;
+    for (const auto& [type, count] : perType) most = std::max(most, count);
+    mPool = DescriptorPool(device, 1, most);
+    mSet = mPool.allocate(mLayout.get());
+    write(mBindings);
+}
+
+Bound& BoundSet::entry(std::uint32_t binding) {
+    for (Bound& b : mBindings) {
+        if (b.binding == binding) return b;
+    }
+    throw Error("descriptor set: binding " + std::to_string(binding) + " is not one of the set's");
+}
+
+void BoundSet::rebind(std::uint32_t binding, VkBuffer buffer) {
+    Bound& b = entry(binding);
+    b.buffer = buffer;
+    write({b});
+}
+
+void BoundSet::rebind(std::uint32_t binding, VkImageView view) {
+    Bound& b = entry(binding);
+    b.view = view;
+    write({b});
+}
+
+void BoundSet::write(const std::vector<Bound>& bindings) const {
+    DescriptorWriter writer;
+    for (const Bound& b : bindings) {
+        if (b.view != VK_NULL_HANDLE) {
+            writer.image(b.binding, b.type, b.view, b.imageLayout, b.sampler);
+        } else {
+            writer.buffer(b.binding, b.type, b.buffer);
+        }
+    }
+    writer.update(mDevice, mSet);
+}
+
+} // namespace bl::vk
