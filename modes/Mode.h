@@ -93,8 +93,6 @@ inline TradeSettings tradeSettingsOf(const Settings& settings, const std::string
     return t;
 }
 
-// What a mode's setScene() built, for a call that needs it: a clear error naming the mode and the
-// call when there is none yet (iterate() or resolve() before setScene()).
 // The device a GPU mode's setScene() needs: a clear error naming the mode where it was given none.
 inline vk::Context& requireDevice(vk::Context* ctx, std::string_view mode) {
     if (!ctx) {
@@ -103,6 +101,8 @@ inline vk::Context& requireDevice(vk::Context* ctx, std::string_view mode) {
     return *ctx;
 }
 
+// What a mode's setScene() built, for a call that needs it: a clear error naming the mode and the
+// call when there is none yet (iterate() or resolve() before setScene()).
 template <typename State>
 State& sceneState(State* state, std::string_view mode, std::string_view call) {
     if (!state) {

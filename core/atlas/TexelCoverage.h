@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <glm/vec2.hpp>
+#include <glm/ext/vector_double2.hpp>
 #include <glm/vec3.hpp>
 #include <limits>
 #include <map>
@@ -19,6 +20,13 @@ namespace bl::atlas {
 
 // Does triangle p overlap the unit square at (x, y)? (Separating axes.)
 bool overlapsTexel(const glm::vec2 p[3], float x, float y);
+
+// The part of triangle (a, b, c) inside the unit square [x, x + 1] x [y, y + 1] (Sutherland-Hodgman),
+// a convex polygon; empty where they share no area.
+std::vector<glm::dvec2> clipTriangleToTexel(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, int x, int y);
+// Its area, and the area of any simple polygon.
+double clippedTriangleArea(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, int x, int y);
+double polygonArea(const std::vector<glm::dvec2>& polygon);
 
 // Closest point of triangle p to q, as barycentrics.
 glm::vec3 closestBarycentric(const glm::vec2 p[3], glm::vec2 q);

@@ -158,8 +158,12 @@ SurfaceHit EmbreeScene::surfaceAt(std::uint32_t mesh, std::uint32_t tri, const g
         u /= sum;
         v /= sum;
     }
+    return surfaceAt(mesh, tri, float(u), float(v));
+}
+
+SurfaceHit EmbreeScene::surfaceAt(std::uint32_t mesh, std::uint32_t tri, float u, float v) const {
     SurfaceHit hit;
-    fillHit(mesh, tri, float(u), float(v), hit);
+    fillHit(mesh, tri, u, v, hit);
     return hit;
 }
 

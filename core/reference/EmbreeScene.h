@@ -54,6 +54,8 @@ public:
     // point's projection onto the triangle's plane, clamped into the triangle (a texel's sample point
     // to path-trace from: reference/TexelBaker.h).
     SurfaceHit surfaceAt(std::uint32_t mesh, std::uint32_t tri, const glm::vec3& point) const;
+    // The point at barycentrics (1 - u - v, u, v) of the triangle's corners in the mesh's order.
+    SurfaceHit surfaceAt(std::uint32_t mesh, std::uint32_t tri, float u, float v) const;
 
     // World-space vertices of a triangle (at the baked time).
     void triangle(std::uint32_t mesh, std::uint32_t tri, glm::vec3& a, glm::vec3& b, glm::vec3& c) const;

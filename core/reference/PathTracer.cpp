@@ -73,7 +73,7 @@ PathSample PathTracer::traceLeaving(const SurfaceHit& at, bool back, std::uint32
                                     std::uint32_t seed) const {
     shader::RandomStream rng = shader::blRandomStream(seed, index, sampleIndex);
     const glm::vec3 normal = back ? -at.geometricNormal : at.geometricNormal;
-    return tracePath(at.position + normal, -normal, rng, &at, nullptr);
+    return tracePath(at.position, -normal, rng, &at, nullptr);
 }
 
 PathSample PathTracer::tracePath(glm::vec3 origin, glm::vec3 direction, shader::RandomStream& rng,

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 #include <string>
+#include <utility>
 
 namespace bl::vk {
 
@@ -30,8 +31,7 @@ BoundSet::BoundSet(VkDevice device, std::initializer_list<Bound> bindings, VkSha
     std::vector<Binding> layout;
     std::map<VkDescriptorType, std::uint32_t> perType;
     for (const Bound& b : mBindings) {
-        const bool isBuffer = b.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-        if (isBuffer ? b.buffer == VK_NULL_HANDLE : b.view == VK_NULL_HANDLE) {
+        if (b.holdsBuffer() ? b.buffer == VK_NULL_HANDLE : b.view == VK_NULL_HANDLE) {
             throw Error("descriptor set: binding " + std::to_string(b.binding) + " is given no resource");
         }
         if (std::count_if(mBindings.begin(), mBindings.end(), [&](const Bound& o) { return o.binding == b.binding; }) > 1) {
@@ -48,6 +48,21 @@ BoundSet::BoundSet(VkDevice device, std::initializer_list<Bound> bindings, VkSha
     write(mBindings);
 }
 
+BoundSet::BoundSet(BoundSet&& other) noexcept
+    : mDevice(other.mDevice), mBindings(std::move(other.mBindings)), mLayout(std::move(other.mLayout)),
+      mPool(std::move(other.mPool)), mSet(std::exchange(other.mSet, VK_NULL_HANDLE)) {}
+
+BoundSet& BoundSet::operator=(BoundSet&& other) noexcept {
+    if (this != &other) {
+        mDevice = other.mDevice;
+        mBindings = std::move(other.mBindings);
+        mLayout = std::move(other.mLayout);
+        mPool = std::move(other.mPool);
+        mSet = std::exchange(other.mSet, VK_NULL_HANDLE);
+    }
+    return *this;
+}
+
 Bound& BoundSet::entry(std::uint32_t binding) {
     for (Bound& b : mBindings) {
         if (b.binding == binding) return b;
@@ -57,12 +72,20 @@ Bound& BoundSet::entry(std::uint32_t binding) {
 
 void BoundSet::rebind(std::uint32_t binding, VkBuffer buffer) {
     Bound& b = entry(binding);
+    if (!b.holdsBuffer() || buffer == VK_NULL_HANDLE) {
+        throw Error("descriptor set: binding " + std::to_string(binding) +
+                    (b.holdsBuffer() ? " is given no buffer" : " holds an image, not a buffer"));
+    }
     b.buffer = buffer;
     write({b});
 }
 
 void BoundSet::rebind(std::uint32_t binding, VkImageView view) {
     Bound& b = entry(binding);
+    if (b.holdsBuffer() || view == VK_NULL_HANDLE) {
+        throw Error("descriptor set: binding " + std::to_string(binding) +
+                    (b.holdsBuffer() ? " holds a buffer, not an image" : " is given no image"));
+    }
     b.view = view;
     write({b});
 }
@@ -70,10 +93,10 @@ void BoundSet::rebind(std::uint32_t binding, VkImageView view) {
 void BoundSet::write(const std::vector<Bound>& bindings) const {
     DescriptorWriter writer;
     for (const Bound& b : bindings) {
-        if (b.view != VK_NULL_HANDLE) {
-            writer.image(b.binding, b.type, b.view, b.imageLayout, b.sampler);
-        } else {
+        if (b.holdsBuffer()) {
             writer.buffer(b.binding, b.type, b.buffer);
+        } else {
+            writer.image(b.binding, b.type, b.view, b.imageLayout, b.sampler);
         }
     }
     writer.update(mDevice, mSet);

@@ -30,6 +30,11 @@ struct Bound {
     static Bound storageImage(std::uint32_t binding, VkImageView view);
     // A combined image sampler read in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.
     static Bound sampledImage(std::uint32_t binding, VkImageView view, VkSampler sampler);
+
+    // A storage or uniform buffer (else an image).
+    bool holdsBuffer() const {
+        return type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    }
 };
 
 class BoundSet {
@@ -38,6 +43,10 @@ public:
     // `stages`: the shader stages every binding is visible to.
     BoundSet(VkDevice device, std::initializer_list<Bound> bindings,
              VkShaderStageFlags stages = VK_SHADER_STAGE_COMPUTE_BIT);
+    BoundSet(BoundSet&& other) noexcept;
+    BoundSet& operator=(BoundSet&& other) noexcept;
+    BoundSet(const BoundSet&) = delete;
+    BoundSet& operator=(const BoundSet&) = delete;
 
     explicit operator bool() const { return mSet != VK_NULL_HANDLE; }
     VkDescriptorSetLayout layout() const { return mLayout.get(); }
@@ -45,8 +54,9 @@ public:
     // The set alone, as a pass that binds only it takes it (vk::ComputePass::dispatch).
     std::span<const VkDescriptorSet> sets() const { return {&mSet, 1}; }
 
-    // Points a listed binding at another resource of the same type (a buffer that grew, an image
-    // made again); throws for a binding the set does not list.
+    // Points a listed binding at another resource of the same kind (a buffer that grew, an image
+    // made again); throws for a binding the set does not list, a resource of the other kind (a
+    // buffer for an image binding or the reverse) and a null handle.
     void rebind(std::uint32_t binding, VkBuffer buffer);
     void rebind(std::uint32_t binding, VkImageView view);
 

@@ -1,49 +1,13 @@
 #include "modes/atlas/AtlasTables.h"
 
+#include "atlas/TexelCoverage.h"
+
 #include "base/Error.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace bl::atlasmode {
-
-namespace {
-
-double polygonArea(const std::vector<glm::dvec2>& p) {
-    double twice = 0.0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        const glm::dvec2& u = p[i];
-        const glm::dvec2& v = p[(i + 1) % p.size()];
-        twice += u.x * v.y - v.x * u.y;
-    }
-    return 0.5 * std::abs(twice);
-}
-
-// Keeps the part of polygon `in` where sign * (coordinate `axis` - bound) <= 0.
-std::vector<glm::dvec2> clipHalfPlane(const std::vector<glm::dvec2>& in, int axis, double bound, double sign) {
-    std::vector<glm::dvec2> out;
-    for (std::size_t i = 0; i < in.size(); ++i) {
-        const glm::dvec2& p = in[i];
-        const glm::dvec2& q = in[(i + 1) % in.size()];
-        const double dp = sign * (p[axis] - bound), dq = sign * (q[axis] - bound);
-        if (dp <= 0.0) out.push_back(p);
-        if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) {
-            out.push_back(p + (q - p) * (dp / (dp - dq)));
-        }
-    }
-    return out;
-}
-
-} // namespace
-
-double clippedTriangleArea(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, int x, int y) {
-    std::vector<glm::dvec2> poly{a, b, c};
-    poly = clipHalfPlane(poly, 0, double(x), -1.0);
-    if (poly.size() >= 3) poly = clipHalfPlane(poly, 0, double(x + 1), 1.0);
-    if (poly.size() >= 3) poly = clipHalfPlane(poly, 1, double(y), -1.0);
-    if (poly.size() >= 3) poly = clipHalfPlane(poly, 1, double(y + 1), 1.0);
-    return poly.size() >= 3 ? polygonArea(poly) : 0.0;
-}
 
 AtlasTables buildAtlasTables(const atlas::Atlas& atlas, const atlas::AtlasLink& link) {
     const atlas::TexelMaps& maps = atlas.maps;

@@ -12,6 +12,7 @@
 
 #include "atlas/Atlas.h"
 #include "atlas/AtlasLink.h"
+#include "atlas/TexelCoverage.h"
 
 #include <modes/atlas/AtlasShared.h>
 #include <vector>
@@ -28,7 +29,6 @@ struct AtlasTables {
 
 AtlasTables buildAtlasTables(const atlas::Atlas& atlas, const atlas::AtlasLink& link);
 
-// Area of the part of triangle (a, b, c) inside the unit square [x, x + 1] x [y, y + 1].
-double clippedTriangleArea(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, int x, int y);
+using atlas::clippedTriangleArea; // core/atlas/TexelCoverage.h
 
 } // namespace bl::atlasmode

@@ -62,4 +62,12 @@ TEST_F(BoundSetTest, RefusesListsThatCannotBeASet) {
               std::string::npos);
     vk::BoundSet set(d, {vk::Bound::storageBuffer(0, buffer.get())});
     EXPECT_NE(errorOf([&] { set.rebind(5, buffer.get()); }).find("binding 5 is not one of the set's"), std::string::npos);
+    EXPECT_NE(errorOf([&] { set.rebind(0, VkImageView(VK_NULL_HANDLE)); }).find("binding 0 holds a buffer, not an image"),
+              std::string::npos);
+    EXPECT_NE(errorOf([&] { set.rebind(0, VkBuffer(VK_NULL_HANDLE)); }).find("binding 0 is given no buffer"),
+              std::string::npos);
+    // A moved-from set holds nothing.
+    vk::BoundSet moved = std::move(set);
+    EXPECT_TRUE(moved);
+    EXPECT_FALSE(set); // what a move leaves behind is the point here
 }
