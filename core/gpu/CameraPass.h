@@ -7,7 +7,7 @@
 
 #include "gpu/Accumulator.h"
 #include "gpu/GBufferPass.h"
-#include "vk/Descriptors.h"
+#include "vk/BoundSet.h"
 
 #include <memory>
 
@@ -37,8 +37,8 @@ public:
     // Records the G-buffer of `s` (its camera is written in the command stream).
     void record(VkCommandBuffer cmd, const CameraSample& s, vk::GpuTimer* timer);
 
-    VkDescriptorSetLayout setLayout() const { return mSetLayout.get(); }
-    VkDescriptorSet set() const { return mSet; }
+    VkDescriptorSetLayout setLayout() const { return mBound.layout(); }
+    VkDescriptorSet set() const { return mBound.set(); }
 
     const GBufferPass& gbuffer() const { return *mGBuffer; }
     Accumulator& accumulator() { return mAccumulator; }
@@ -50,9 +50,7 @@ private:
     const GpuScene* mScene;
     std::unique_ptr<GBufferPass> mGBuffer;
     Accumulator mAccumulator;
-    vk::DescriptorSetLayout mSetLayout;
-    vk::DescriptorPool mPool;
-    VkDescriptorSet mSet = VK_NULL_HANDLE;
+    vk::BoundSet mBound;
 };
 
 } // namespace bl::gpu

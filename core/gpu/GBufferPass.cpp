@@ -23,23 +23,18 @@ GBufferPass::GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uin
     mCamera = RecordedUniform<shader::GpuCamera>(ctx);
 
     const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    mFrameLayout = vk::makeDescriptorSetLayout(
-        device, {{shader::kGBufferBindingCamera, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both},
-                 {shader::kGBufferBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                 {shader::kGBufferBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                 {shader::kGBufferBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT}});
+    mFrame = vk::BoundSet(device,
+                          {vk::Bound::uniformBuffer(shader::kGBufferBindingCamera, mCamera.get()).visibleTo(both),
+                           vk::Bound::storageBuffer(shader::kGBufferBindingMaterials, scene.materialBuffer()),
+                           vk::Bound::storageBuffer(shader::kGBufferBindingVertices, scene.vertexBuffer()),
+                           vk::Bound::storageBuffer(shader::kGBufferBindingIndices, scene.indexBuffer())},
+                          VK_SHADER_STAGE_FRAGMENT_BIT);
+    // One set per material, all of one layout: a pool of those, written apart.
     mMaterialLayout = vk::makeDescriptorSetLayout(
         device, {{shader::kGBufferBindingAlbedoTexture, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                   VK_SHADER_STAGE_FRAGMENT_BIT}});
     const auto materialCount = static_cast<std::uint32_t>(scene.scene().materials.size());
-    mPool = vk::DescriptorPool(device, materialCount + 1, materialCount + 4);
-    mFrameSet = mPool.allocate(mFrameLayout.get());
-    vk::DescriptorWriter()
-        .buffer(shader::kGBufferBindingCamera, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, mCamera.get())
-        .buffer(shader::kGBufferBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.materialBuffer())
-        .buffer(shader::kGBufferBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.vertexBuffer())
-        .buffer(shader::kGBufferBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.indexBuffer())
-        .update(device, mFrameSet);
+    mPool = vk::DescriptorPool(device, std::max(materialCount, 1u), std::max(materialCount, 1u));
     for (std::uint32_t m = 0; m < materialCount; ++m) {
         VkDescriptorSet set = mPool.allocate(mMaterialLayout.get());
         vk::DescriptorWriter()
@@ -49,7 +44,7 @@ GBufferPass::GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uin
         mMaterialSets.push_back(set);
     }
 
-    VkDescriptorSetLayout sets[] = {mFrameLayout.get(), mMaterialLayout.get()};
+    VkDescriptorSetLayout sets[] = {mFrame.layout(), mMaterialLayout.get()};
     mPipelineLayout = vk::makePipelineLayout(device, sets, sizeof(shader::GBufferPush), both);
     vk::GraphicsPipelineDesc desc;
     desc.vertexShader = kSpv_gpu_gbuffer_vert;
@@ -77,7 +72,7 @@ void GBufferPass::record(VkCommandBuffer cmd, const shader::GpuCamera& camera, g
     targets.extent = {mWidth, mHeight};
     vk::beginRendering(cmd, targets);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipeline.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipelineLayout.get(), 0, 1, &mFrameSet, 0,
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipelineLayout.get(), 0, 1, mFrame.sets().data(), 0,
                             nullptr);
     mScene->bindGeometry(cmd);
     for (const GpuDraw& d : mScene->draws()) {

@@ -6,7 +6,7 @@
 #include "gpu/GpuScene.h"
 #include "gpu/RecordedUniform.h"
 #include "vk/Buffer.h"
-#include "vk/Descriptors.h"
+#include "vk/BoundSet.h"
 #include "vk/GpuTimer.h"
 #include "vk/Pipeline.h"
 
@@ -46,10 +46,9 @@ private:
     std::array<vk::GpuImage, shader::kGBufferAttachmentCount> mAttachments;
     vk::GpuImage mDepth;
     RecordedUniform<shader::GpuCamera> mCamera;
-    vk::DescriptorSetLayout mFrameLayout;
+    vk::BoundSet mFrame;
     vk::DescriptorSetLayout mMaterialLayout;
     vk::DescriptorPool mPool;
-    VkDescriptorSet mFrameSet = VK_NULL_HANDLE;
     std::vector<VkDescriptorSet> mMaterialSets;
     vk::PipelineLayout mPipelineLayout;
     vk::Pipeline mPipeline;

@@ -26,19 +26,33 @@ Bound Bound::sampledImage(std::uint32_t binding, VkImageView view, VkSampler sam
             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
 }
 
+Bound Bound::storageImages(std::uint32_t binding, std::span<const VkImageView> views) {
+    Bound b = storageImage(binding, views.empty() ? VK_NULL_HANDLE : views.front());
+    b.array.assign(views.begin(), views.end());
+    return b;
+}
+
+Bound Bound::visibleTo(VkShaderStageFlags shaderStages) && {
+    stages = shaderStages;
+    return std::move(*this);
+}
+
 BoundSet::BoundSet(VkDevice device, std::initializer_list<Bound> bindings, VkShaderStageFlags stages)
     : mDevice(device), mBindings(bindings) {
     std::vector<Binding> layout;
     std::map<VkDescriptorType, std::uint32_t> perType;
     for (const Bound& b : mBindings) {
-        if (b.holdsBuffer() ? b.buffer == VK_NULL_HANDLE : b.view == VK_NULL_HANDLE) {
+        const bool missing = b.holdsBuffer() ? b.buffer == VK_NULL_HANDLE
+                                             : b.view == VK_NULL_HANDLE ||
+                                                   std::find(b.array.begin(), b.array.end(), VK_NULL_HANDLE) != b.array.end();
+        if (missing) {
             throw Error("descriptor set: binding " + std::to_string(b.binding) + " is given no resource");
         }
         if (std::count_if(mBindings.begin(), mBindings.end(), [&](const Bound& o) { return o.binding == b.binding; }) > 1) {
             throw Error("descriptor set: binding " + std::to_string(b.binding) + " is listed twice");
         }
-        layout.push_back({b.binding, b.type, stages});
-        ++perType[b.type];
+        layout.push_back({b.binding, b.type, b.stages != 0 ? b.stages : stages, b.count()});
+        perType[b.type] += b.count();
     }
     mLayout = makeDescriptorSetLayout(device, layout);
     std::uint32_t most = 1;
@@ -82,9 +96,11 @@ void BoundSet::rebind(std::uint32_t binding, VkBuffer buffer) {
 
 void BoundSet::rebind(std::uint32_t binding, VkImageView view) {
     Bound& b = entry(binding);
-    if (b.holdsBuffer() || view == VK_NULL_HANDLE) {
+    if (b.holdsBuffer() || !b.array.empty() || view == VK_NULL_HANDLE) {
         throw Error("descriptor set: binding " + std::to_string(binding) +
-                    (b.holdsBuffer() ? " holds a buffer, not an image" : " is given no image"));
+                    (b.holdsBuffer() ? " holds a buffer, not an image"
+                     : !b.array.empty() ? " is an array: rebind() takes one image"
+                                        : " is given no image"));
     }
     b.view = view;
     write({b});
@@ -95,8 +111,12 @@ void BoundSet::write(const std::vector<Bound>& bindings) const {
     for (const Bound& b : bindings) {
         if (b.holdsBuffer()) {
             writer.buffer(b.binding, b.type, b.buffer);
-        } else {
+        } else if (b.array.empty()) {
             writer.image(b.binding, b.type, b.view, b.imageLayout, b.sampler);
+        } else {
+            for (std::uint32_t i = 0; i < b.count(); ++i) {
+                writer.image(b.binding, b.type, b.array[i], b.imageLayout, b.sampler, i);
+            }
         }
     }
     writer.update(mDevice, mSet);

@@ -23,6 +23,8 @@ struct Bound {
     VkImageView view = VK_NULL_HANDLE;
     VkSampler sampler = VK_NULL_HANDLE;
     VkImageLayout imageLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    std::vector<VkImageView> array; // an array binding of storage images: element i is array[i]
+    VkShaderStageFlags stages = 0;  // 0: the stages the set gives every binding
 
     static Bound storageBuffer(std::uint32_t binding, VkBuffer buffer);
     static Bound uniformBuffer(std::uint32_t binding, VkBuffer buffer);
@@ -30,6 +32,11 @@ struct Bound {
     static Bound storageImage(std::uint32_t binding, VkImageView view);
     // A combined image sampler read in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.
     static Bound sampledImage(std::uint32_t binding, VkImageView view, VkSampler sampler);
+    // An array of storage images (GENERAL layout), one element per view.
+    static Bound storageImages(std::uint32_t binding, std::span<const VkImageView> views);
+    // This binding visible to `shaderStages` instead of the set's stages.
+    Bound visibleTo(VkShaderStageFlags shaderStages) &&;
+    std::uint32_t count() const { return array.empty() ? 1u : static_cast<std::uint32_t>(array.size()); }
 
     // A storage or uniform buffer (else an image).
     bool holdsBuffer() const {
