@@ -42,5 +42,9 @@ void beginRendering(VkCommandBuffer cmd, const RenderTargets& targets);
 
 // Makes all earlier writes of `srcStage` visible to `dstStage` (global memory barrier).
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkPipelineStageFlags2 dstStage);
+// The end of a frame's compute work: its writes visible to the host and to the read-back copies.
+inline void computeToHost(VkCommandBuffer cmd) {
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+}
 
 } // namespace bl::vk

@@ -19,6 +19,12 @@ public:
     void begin(VkCommandBuffer cmd);
     std::uint32_t start(VkCommandBuffer cmd, const std::string& name);
     void stop(VkCommandBuffer cmd, std::uint32_t scope);
+    // What `record` records, in a scope named `name`.
+    template <typename Record> void timed(VkCommandBuffer cmd, const std::string& name, Record&& record) {
+        const std::uint32_t scope = start(cmd, name);
+        record();
+        stop(cmd, scope);
+    }
     // Reads the finished queries and adds them to the totals.
     void collect();
 

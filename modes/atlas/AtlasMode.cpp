@@ -431,8 +431,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
             g.exchange.updatePass.dispatch(cmd, update, vk::groupCount(slots, shader::kAtlasGroupSize));
         }
         g.timer.stop(cmd, scope);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                          VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+        vk::computeToHost(cmd);
     });
     g.timer.collect();
     wall.reset();

@@ -52,14 +52,11 @@ ImageSet AtlasMode::resolve() {
             if (g.glossy.highlightPass) {
                 recordHighlight(cmd);
             }
-            const std::uint32_t scope = g.timer.start(cmd, "shade");
             const VkDescriptorSet sets[] = {g.view.camera->set(), g.view.bound.set()};
-            g.view.shadePass.dispatch(cmd, push,
-                                 vk::groupCount(width, height, shader::kAtlasViewGroupSize),
-                                 sets);
-            g.timer.stop(cmd, scope);
-            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                              VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+            g.timer.timed(cmd, "shade", [&] {
+                g.view.shadePass.dispatch(cmd, push, vk::groupCount(width, height, shader::kAtlasViewGroupSize), sets);
+            });
+            vk::computeToHost(cmd);
         });
         g.timer.collect();
     }

@@ -342,13 +342,12 @@ void BidirMode::iterate(const IterationInfo& info) {
         if (mInterleave->active()) mInterleave->recordClear(cmd);
         const VkDescriptorSet sets[] = {g.camera->set(), g.bound.set()};
         g.evaluate.dispatch(cmd, push,
-                            {vk::groupCount(mInterleave->dispatchWidth(), shader::kBidirGroupSize),
-                             vk::groupCount(mInterleave->dispatchHeight(), shader::kBidirGroupSize), 1},
+                            vk::groupCount(mInterleave->dispatchWidth(), mInterleave->dispatchHeight(),
+                                           shader::kBidirGroupSize),
                             sets);
         g.timer.stop(cmd, scope);
         if (mInterleave->active()) mInterleave->recordResolve(cmd, g.camera->set(), sample.camera, &g.timer);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                          VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+        vk::computeToHost(cmd);
     });
     g.timer.collect();
     wall.reset();

@@ -303,14 +303,11 @@ void MultibounceMode::iterate(const IterationInfo& info) {
         }
         g.emitterPoints->record(cmd, info.time, &g.timer);
         g.camera->record(cmd, sample, &g.timer);
-        const std::uint32_t scope = g.timer.start(cmd, "paths");
         const VkDescriptorSet sets[] = {g.camera->set(), g.bound.set()};
-        g.paths.dispatch(cmd, push,
-                         vk::groupCount(width, height, shader::kMultibounceGroupSize),
-                         sets);
-        g.timer.stop(cmd, scope);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                          VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+        g.timer.timed(cmd, "paths", [&] {
+            g.paths.dispatch(cmd, push, vk::groupCount(width, height, shader::kMultibounceGroupSize), sets);
+        });
+        vk::computeToHost(cmd);
     });
     g.timer.collect();
     ++mIterations;

@@ -133,7 +133,6 @@ void RasterMode::iterate(const IterationInfo& info) {
         g.emitterPoints->record(cmd, info.time, &g.timer);
         g.camera->record(cmd, sample, &g.timer);
 
-        std::uint32_t scope = g.timer.start(cmd, "shade");
         shader::RasterPush push{};
         push.lightCount = g.shadows->lightCount();
         push.shadowResolution = g.shadows->resolution();
@@ -143,12 +142,10 @@ void RasterMode::iterate(const IterationInfo& info) {
         push.width = width;
         push.height = height;
         const VkDescriptorSet sets[] = {g.camera->set(), g.bound.set()};
-        g.shade.dispatch(cmd, push,
-                         vk::groupCount(width, height, shader::kRasterGroupSize),
-                         sets);
-        g.timer.stop(cmd, scope);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                          VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+        g.timer.timed(cmd, "shade", [&] {
+            g.shade.dispatch(cmd, push, vk::groupCount(width, height, shader::kRasterGroupSize), sets);
+        });
+        vk::computeToHost(cmd);
     });
     g.timer.collect();
     ++mIterations;
