@@ -175,6 +175,12 @@ def main(out):
         md.append(f"| {r['scene']} | {r['label']} | {r['iterations']} | {r['wall_seconds']:.2f} | {r['setup_seconds']:.2f} | "
                   f"{fmt(r['relmse'])} | {fmt(r['relmse_over_path_tracer'])} | "
                   f"{', '.join(format(x, '.4f') for x in r['mean_ratio']) or '—'} | {os.path.basename(r['reference'])} |")
+    md += ["", "## The atlas in texel space", "",
+           "`bundlelab bench texels` on the point-lit Cornell box: the atlas's error over every texel side against the "
+           "path tracer baking the same texels, and through the camera against the path tracer for V views "
+           "(experiments/atlas-texels/README.md explains the columns).", ""]
+    texels = read(os.path.join(out, "texels", "cornell-point.log"))
+    md += [line for line in texels.splitlines() if line.startswith(("|", "Time to", "atlas "))] or ["(not run)"]
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     with open(os.path.join(out, "summary.json"), "w") as f:

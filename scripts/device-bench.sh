@@ -36,9 +36,10 @@ fi
 [[ -x "$bl" ]] || { echo "device-bench: no bundlelab binary at $bl" >&2; exit 1; }
 python=python3
 command -v /usr/bin/python3 >/dev/null && python=/usr/bin/python3
-mkdir -p "$out"/passes "$out"/bundles
+mkdir -p "$out"/passes "$out"/bundles "$out"/texels
 start=$(date +%s)
-# Each step owns a share of the budget (passes to 45 %, bundles to 65 %, equal time the rest), so a
+# Each step owns a share of the budget (passes to 40 %, bundles to 58 %, equal time to 86 %, the atlas in
+# texel space the rest), so a
 # slow device still reaches every step; a render that would start with under 20 s left is skipped.
 step_end=$start
 step() { step_end=$((start + budget * $1 / 100)); }
@@ -76,7 +77,7 @@ sponza=$root/data/external/sponza-point.toml
 bunny_env=$root/data/external/bunny-envmap.toml
 bunny=$root/../shared/data/bunny/mcguire/bunny.obj
 
-step 45
+step 40
 # 1. Per-pass times. Each line: mode, scene name, scene file, extra iterations F, settings.
 if ((quick)); then
     width=64 height=36
@@ -126,7 +127,7 @@ for config in "${configs[@]}"; do
     echo "passes $mode-$name $(status $rc)" >>"$out/steps.txt"
 done
 
-step 65
+step 58
 # 2. Bundles against the floor.
 if ((quick)); then
     bench_scenes=("cornell $root/data/cornell-box/cornell.toml"); res=(--resolution 64 --resolution 128); dirs=2
@@ -148,7 +149,7 @@ for entry in "${bench_scenes[@]}"; do
     done
 done
 
-step 100
+step 86
 # 3. Equal time against the path tracer (the runner; one GPU task at a time, the path tracer on all cores).
 if ((quick)); then
     seconds=0.5 spp=16 resolution=16 mb="bundle_count = 2, paths_per_pixel = 1, bundle_resolution = 32" area_variants=""
@@ -232,6 +233,29 @@ else
     timeout "$left" "$bl" run "$out/equal-time.toml" --out "$out/equal-time" "${device[@]}" >"$out/equal-time.log" 2>&1
     rc=$?
     echo "equal-time all $(status $rc)" >>"$out/steps.txt"
+fi
+
+step 100
+# 4. The atlas in texel space (bundlelab bench texels): its error over every texel against the path
+# tracer baking the same texels, and per view count against the path tracer (on this machine's cores).
+if ((quick)); then
+    texel_args=(--width 16 --height 16 --set atlas_resolution=32 --set bundle_resolution=64 --directions 4 --directions 8
+                --bake-spp 4 --reference-spp 16 --image-spp 4 --image-reference-spp 16)
+else
+    texel_args=(--width 64 --height 64 --set atlas_resolution=128 --set bundle_resolution=256 --directions 16
+                --directions 64 --directions 256 --directions 1024 --bake-spp 1 --bake-spp 4 --bake-spp 16 --bake-spp 64
+                --bake-spp 256 --reference-spp 2048 --image-spp 1 --image-spp 4 --image-spp 16 --image-spp 64
+                --image-spp 256 --image-spp 1024 --image-reference-spp 8192)
+fi
+left=$(remaining)
+if ((left < 20)); then
+    echo "texels cornell-point skipped (budget)" >>"$out/steps.txt"
+else
+    log "texels: cornell-point"
+    timeout "$left" "$bl" bench texels "$cornell" "${texel_args[@]}" "${device[@]}" --csv "$out/texels/cornell-point.csv" \
+        >"$out/texels/cornell-point.log" 2>&1
+    rc=$?
+    echo "texels cornell-point $(status $rc)" >>"$out/steps.txt"
 fi
 
 log "summary"

@@ -39,6 +39,8 @@ for label in path-tracer multibounce bidir atlas; do
     grep -qE "^\| cornell-point \| $label \| [0-9]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.e+-]+ \| [0-9.e+-]+ \|" "$md" \
         || fail "no equal-time row for $label"
 done
+grep -qE "^\| atlas \| 8 directions \| [0-9.]+ \| [0-9.e+-]+ \|" "$md" || fail "no texel-space row for the atlas"
+grep -qE "^\| baker \| 4 spp \|" "$md" || fail "no texel-space row for the baker"
 /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['passes'] and j['bundles'] and j['equal_time']" \
     "$out/bench/summary.json" || fail "summary.json incomplete"
 # A step that failed fails the summary and is named in it.
