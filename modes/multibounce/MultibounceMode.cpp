@@ -78,24 +78,37 @@ std::unique_ptr<Mode> MultibounceMode::create(const Settings& settings) {
 
 MultibounceMode::MultibounceMode(const Settings& settings) : mSettings(settings), mOptions(multibounceOptions(settings)) {}
 
-struct MultibounceMode::Gpu {
-    std::unique_ptr<gpu::GpuScene> scene;
-    std::unique_ptr<gpu::CameraPass> camera;
+// What lights each path vertex: the point/spot lights' shadow cubes, the emitter points
+// (next-event estimation toward area emitters) and the emitters' table for bundle hits (MIS).
+struct MultibounceLights {
     std::unique_ptr<gpu::ShadowCubePass> shadows;
     std::unique_ptr<gpu::EmitterPointPass> emitterPoints;
+    vk::Buffer emitters;
+    std::uint32_t emitterCount = 0;
+};
+
+// The K resident bundles a path steps through ([TO12] section 7): the pool, their directions, the
+// point splats of imperfect bundles, the albedo textures read at hits, and what their builds cost.
+struct MultibounceBundles {
     std::unique_ptr<BundlePool> pool;
     std::unique_ptr<DirectionSampler> directions;
     std::unique_ptr<SurfacePoints> points; // imperfect bundles only
     vk::Buffer noPoints;                   // perfect bundles: the points and splats bindings' placeholder
     std::unique_ptr<gpu::PackedTextures> textures;
-    vk::Buffer emitters;
-    std::uint32_t emitterCount = 0;
-    vk::BoundSet bound;
-    vk::ComputePass<shader::MultibouncePush> paths;
-    vk::GpuTimer timer;
     Bounds bounds;
     std::uint64_t nodesLast = 0; // nodes the last iteration's K bundles held
     std::uint64_t rebuilds = 0;  // iterations redone after the pool grew
+};
+
+struct MultibounceMode::Gpu {
+    std::unique_ptr<gpu::GpuScene> scene;
+    std::unique_ptr<gpu::CameraPass> camera;
+    MultibounceLights lights;
+    MultibounceBundles bundles;
+    // The paths pass: every camera path through the bundles, its vertices lit as above.
+    vk::BoundSet bound;
+    vk::ComputePass<shader::MultibouncePush> paths;
+    vk::GpuTimer timer;
 };
 
 MultibounceMode::~MultibounceMode() = default;
@@ -172,11 +185,11 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     auto g = std::make_unique<Gpu>();
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
     g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kMultibounceAccumLayers);
-    g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
-    g->emitterPoints = std::make_unique<gpu::EmitterPointPass>(
+    g->lights.shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
+    g->lights.emitterPoints = std::make_unique<gpu::EmitterPointPass>(
         *ctx, *g->scene, scene, mPlan.runs(kPassEmitterPoints) ? mOptions.emitterPointCount() : 0u,
         mOptions.emitterShadowResolution);
-    g->bounds = scene.bounds();
+    g->bundles.bounds = scene.bounds();
 
     const std::uint32_t slots = mOptions.bundleCount;
     const std::uint32_t resolution = mOptions.bundleResolution;
@@ -188,7 +201,7 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     options.initialNodes = kInitialNodesPerPixel * slots * options.slotPixels;
     options.memoryCapBytes = mOptions.memoryCapBytes;
     try {
-        g->pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
+        g->bundles.pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
     } catch (const Error& e) {
         throw Error("multibounce: " + std::to_string(slots) + " bundles of " + std::to_string(resolution) + "^2: " +
                     e.what() + " (lower bundle_count or bundle_resolution, or raise memory_cap_mib where the device allows)");
@@ -198,34 +211,34 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->timer = vk::GpuTimer(*ctx, 2 * slots + kOtherScopes);
 
     if (mPlan.runs(kPassSurfacePoints)) {
-        g->points = std::make_unique<SurfacePoints>(*ctx, *g->scene, slots, mOptions.points, mOptions.splatScale);
+        g->bundles.points = std::make_unique<SurfacePoints>(*ctx, *g->scene, slots, mOptions.points, mOptions.splatScale);
     } else {
-        g->noPoints = vk::Buffer(*ctx, sizeof(shader::MultibouncePoint), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+        g->bundles.noPoints = vk::Buffer(*ctx, sizeof(shader::MultibouncePoint), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                  vk::MemoryUse::Device);
     }
 
-    g->textures = std::make_unique<gpu::PackedTextures>(*ctx, scene);
+    g->bundles.textures = std::make_unique<gpu::PackedTextures>(*ctx, scene);
 
     std::vector<shader::MultibounceEmitter> emitters;
     for (const gpu::GpuDraw& d : g->scene->draws()) {
         emitters.push_back({scene.meshes[d.mesh].emission, d.firstIndex / 3});
     }
-    g->emitterCount = static_cast<std::uint32_t>(emitters.size());
-    g->emitters = vk::makeBuffer(*ctx, std::span<const shader::MultibounceEmitter>(emitters),
+    g->lights.emitterCount = static_cast<std::uint32_t>(emitters.size());
+    g->lights.emitters = vk::makeBuffer(*ctx, std::span<const shader::MultibounceEmitter>(emitters),
                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
     VkDevice device = ctx->device();
-    const VkBuffer points = g->points ? g->points->pointBuffer() : g->noPoints.get();
-    const VkBuffer splats = g->points ? g->points->splatBuffer() : g->noPoints.get();
+    const VkBuffer points = g->bundles.points ? g->bundles.points->pointBuffer() : g->bundles.noPoints.get();
+    const VkBuffer splats = g->bundles.points ? g->bundles.points->splatBuffer() : g->bundles.noPoints.get();
     g->bound = vk::BoundSet(
         device, {vk::Bound::storageBuffer(shader::kMultibounceBindingLights, g->scene->lightBuffer()),
-                 vk::Bound::storageImage(shader::kMultibounceBindingShadowMaps, g->shadows->maps().view()),
-                 vk::Bound::storageBuffer(shader::kMultibounceBindingEmitters, g->emitters.get()),
+                 vk::Bound::storageImage(shader::kMultibounceBindingShadowMaps, g->lights.shadows->maps().view()),
+                 vk::Bound::storageBuffer(shader::kMultibounceBindingEmitters, g->lights.emitters.get()),
                  vk::Bound::storageBuffer(shader::kMultibounceBindingPoints, points),
                  vk::Bound::storageBuffer(shader::kMultibounceBindingSplats, splats),
-                 vk::Bound::storageBuffer(shader::kMultibounceBindingTextures, g->textures->buffer()),
-                 vk::Bound::storageBuffer(shader::kMultibounceBindingEmitterPoints, g->emitterPoints->buffer()),
-                 vk::Bound::storageImage(shader::kMultibounceBindingEmitterShadowMaps, g->emitterPoints->maps().view())});
+                 vk::Bound::storageBuffer(shader::kMultibounceBindingTextures, g->bundles.textures->buffer()),
+                 vk::Bound::storageBuffer(shader::kMultibounceBindingEmitterPoints, g->lights.emitterPoints->buffer()),
+                 vk::Bound::storageImage(shader::kMultibounceBindingEmitterShadowMaps, g->lights.emitterPoints->maps().view())});
     g->paths = vk::ComputePass<shader::MultibouncePush>(device, kSpv_modes_multibounce_paths_comp,
                                                         {g->camera->setLayout(), g->bound.layout()});
     mGpu = std::move(g);
@@ -235,54 +248,54 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
 // again when they did not fit, and refuses what the limits cannot hold.
 void MultibounceMode::buildBundles(const IterationInfo& info) {
     Gpu& g = *mGpu;
-    const std::uint32_t slots = g.pool->slots();
+    const std::uint32_t slots = g.bundles.pool->slots();
     const std::uint32_t resolution = mOptions.bundleResolution;
     std::vector<shader::BundleFrame> frames(slots);
     for (std::uint32_t k = 0; k < slots; ++k) {
-        const BundleDirection dir = g.directions->sample(mIterations * slots + k);
-        frames[k] = bundleFrameForSphere(dir.omega, dir.rotation, g.bounds.center(), g.bounds.radius(), resolution);
+        const BundleDirection dir = g.bundles.directions->sample(mIterations * slots + k);
+        frames[k] = bundleFrameForSphere(dir.omega, dir.rotation, g.bundles.bounds.center(), g.bundles.bounds.radius(), resolution);
     }
-    g.nodesLast = buildFitting(*g.pool, {"multibounce", slots, resolution}, [&] {
+    g.bundles.nodesLast = buildFitting(*g.bundles.pool, {"multibounce", slots, resolution}, [&] {
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
-            g.pool->recordReset(cmd);
-            if (g.points) {
-                g.points->record(cmd, static_cast<std::uint32_t>(info.seed), mIterations, info.time, &g.timer);
+            g.bundles.pool->recordReset(cmd);
+            if (g.bundles.points) {
+                g.bundles.points->record(cmd, static_cast<std::uint32_t>(info.seed), mIterations, info.time, &g.timer);
             }
             for (std::uint32_t k = 0; k < slots; ++k) {
-                const BundleGeometry geometry = g.points ? BundleGeometry::pointSplats(g.points->splats(k), g.points->perDirection())
+                const BundleGeometry geometry = g.bundles.points ? BundleGeometry::pointSplats(g.bundles.points->splats(k), g.bundles.points->perDirection())
                                                          : BundleGeometry::triangles(info.time);
-                g.pool->recordBuild(cmd, k, frames[k], geometry, &g.timer);
+                g.bundles.pool->recordBuild(cmd, k, frames[k], geometry, &g.timer);
             }
             for (std::uint32_t k = 0; k < slots; ++k) {
-                g.pool->recordSort(cmd, k, &g.timer);
+                g.bundles.pool->recordSort(cmd, k, &g.timer);
             }
         });
         g.timer.collect();
-    }, g.rebuilds);
+    }, g.bundles.rebuilds);
 }
 
 void MultibounceMode::iterate(const IterationInfo& info) {
     Gpu& g = sceneState(mGpu, name(), "iterate");
-    if (!g.directions) {
+    if (!g.bundles.directions) {
         // The seed decorrelates runs; directions are reproducible from (settings, seed).
-        g.directions = std::make_unique<DirectionSampler>(mOptions.directions, static_cast<std::uint32_t>(info.seed));
+        g.bundles.directions = std::make_unique<DirectionSampler>(mOptions.directions, static_cast<std::uint32_t>(info.seed));
     }
     buildBundles(info);
 
     const std::uint32_t width = g.camera->width(), height = g.camera->height();
     const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time, info.seed);
-    const bool renderShadows = mPlan.runs(kPassLightShadowCubes) && g.shadows->refreshFor(*mContext, *g.scene, info.time);
-    g.emitterPoints->prepare(info.seed, mIterations, info.time);
+    const bool renderShadows = mPlan.runs(kPassLightShadowCubes) && g.lights.shadows->refreshFor(*mContext, *g.scene, info.time);
+    g.lights.emitterPoints->prepare(info.seed, mIterations, info.time);
     shader::MultibouncePush push{};
-    push.pool = g.pool->view();
+    push.pool = g.bundles.pool->view();
     push.width = width;
     push.height = height;
     push.seed = static_cast<std::uint32_t>(info.seed);
     push.iteration = mIterations;
-    push.lightCount = g.shadows->lightCount();
-    push.shadowResolution = g.shadows->resolution();
-    push.emitterCount = g.emitterCount;
+    push.lightCount = g.lights.shadows->lightCount();
+    push.shadowResolution = g.lights.shadows->resolution();
+    push.emitterCount = g.lights.emitterCount;
     push.flags = (mPlan.runs(kPassEnvironment) ? shader::kMultibounceEnvironment : 0u) |
                  (mPlan.runs(kPassTextures) ? shader::kMultibounceTextured : 0u) |
                  (mOptions.splatUvCentre ? shader::kMultibounceSplatCentreUv : 0u) |
@@ -292,16 +305,16 @@ void MultibounceMode::iterate(const IterationInfo& info) {
     push.maxSegments = mOptions.maxSegments;
     push.rrSegments = mOptions.rrSegments;
     // Uniform directions: every direction of a hemisphere has the same density (the axis is arbitrary).
-    push.hemispherePdf = g.directions->hemispherePdf(glm::vec3(0.0f, 0.0f, 1.0f));
+    push.hemispherePdf = g.bundles.directions->hemispherePdf(glm::vec3(0.0f, 0.0f, 1.0f));
     push.samplePosition = sample.samplePosition;
     push.pathsPerPixel = mOptions.pathsPerPixel;
-    push.pointsPerDirection = g.points ? g.points->perDirection() : 0u;
+    push.pointsPerDirection = g.bundles.points ? g.bundles.points->perDirection() : 0u;
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
         if (renderShadows) {
-            g.shadows->record(cmd, info.time, &g.timer);
+            g.lights.shadows->record(cmd, info.time, &g.timer);
         }
-        g.emitterPoints->record(cmd, info.time, &g.timer);
+        g.lights.emitterPoints->record(cmd, info.time, &g.timer);
         g.camera->record(cmd, sample, &g.timer);
         const VkDescriptorSet sets[] = {g.camera->set(), g.bound.set()};
         g.timer.timed(cmd, "paths", [&] {
@@ -320,10 +333,10 @@ ImageSet MultibounceMode::resolve() {
     gpu::AccumulatedImages estimate = g.camera->accumulator().resolve(*mContext, mIterations * mOptions.pathsPerPixel);
     out.layers = std::move(estimate.layers);
     addSampleLosses(out, estimate.nonFiniteSamples, estimate.droppedSamples, estimate.expectedSamples);
-    out.counters.emplace_back("bundle_nodes_last", double(g.nodesLast));
-    out.counters.emplace_back("bundle_pool_capacity", double(g.pool->capacity()));
-    out.counters.emplace_back("bundle_pool_max_nodes", double(g.pool->maxNodes()));
-    out.counters.emplace_back("bundle_rebuilds", double(g.rebuilds));
+    out.counters.emplace_back("bundle_nodes_last", double(g.bundles.nodesLast));
+    out.counters.emplace_back("bundle_pool_capacity", double(g.bundles.pool->capacity()));
+    out.counters.emplace_back("bundle_pool_max_nodes", double(g.bundles.pool->maxNodes()));
+    out.counters.emplace_back("bundle_rebuilds", double(g.bundles.rebuilds));
     return out;
 }
 
