@@ -180,7 +180,14 @@ def main(out):
            "path tracer baking the same texels, and through the camera against the path tracer for V views "
            "(experiments/atlas-texels/README.md explains the columns).", ""]
     texels = read(os.path.join(out, "texels", "cornell-point.log"))
-    md += [line for line in texels.splitlines() if line.startswith(("|", "Time to", "atlas "))] or ["(not run)"]
+    kept = []  # the tables and their captions, each caption and table apart (a table ends at a blank line)
+    for line in texels.splitlines():
+        if line.startswith("|"):
+            kept.append(line)
+        elif line.startswith(("Time to", "atlas ")):
+            kept += ["", line, ""]
+    texel_step = [s for s in steps if len(s) == 3 and s[0] == "texels"]
+    md += kept or ["(" + (texel_step[0][2] if texel_step else "not run") + ")"]
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     with open(os.path.join(out, "summary.json"), "w") as f:

@@ -7,6 +7,8 @@
 #   2. bundle build + walk against the rasterization floor, both build backends, Sponza and the bunny;
 #   3. each mode against the path tracer at equal time on this machine's cores (the experiment runner;
 #      relMSE against a 1024-spp reference);
+#   4. the atlas in texel space (bundlelab bench texels, point-lit Cornell box): its error over every
+#      texel against the path tracer baking the same texels, and per view count against the path tracer;
 # and writes OUTDIR/summary.md (one document of tables) and OUTDIR/summary.json. A step that would
 # overrun the budget is skipped and listed as skipped; a failed render is listed with its exit status.
 # Runs from the unpacked kit (scripts/device-kit.sh) or from a checkout with build/bundlelab.
@@ -249,12 +251,14 @@ else
                 --bake-spp 256 --reference-spp 1024 --image-spp 1 --image-spp 4 --image-spp 16 --image-spp 64
                 --image-spp 256 --image-reference-spp 4096)
 fi
+rm -f "$out"/texels/cornell-point.* # a skipped step must not show an earlier run's tables
 left=$(remaining)
 if ((left < 20)); then
     echo "texels cornell-point skipped (budget)" >>"$out/steps.txt"
 else
     log "texels: cornell-point"
-    timeout "$left" "$bl" bench texels "$cornell" "${texel_args[@]}" "${device[@]}" --csv "$out/texels/cornell-point.csv" \
+    # Line-buffered, so that a step stopped at its share keeps the rows it printed.
+    timeout "$left" stdbuf -oL "$bl" bench texels "$cornell" "${texel_args[@]}" "${device[@]}" --csv "$out/texels/cornell-point.csv" \
         >"$out/texels/cornell-point.log" 2>&1
     rc=$?
     echo "texels cornell-point $(status $rc)" >>"$out/steps.txt"

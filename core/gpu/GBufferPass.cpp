@@ -2,6 +2,8 @@
 
 #include "vk/Commands.h"
 
+#include <algorithm>
+
 #include <gpu/gbuffer.frag.spv.h>
 #include <gpu/gbuffer.vert.spv.h>
 

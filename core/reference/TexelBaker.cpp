@@ -138,7 +138,9 @@ TexelBake bakeTexels(const Scene& scene, const atlas::Atlas& atlas, const TexelB
                 const glm::vec2 r = shader::blRandom2(rng);
                 const double su = std::sqrt(double(r.x));
                 const glm::dvec2 q = (1.0 - su) * f.piece[0] + su * (1.0 - r.y) * f.piece[1] + su * r.y * f.piece[2];
-                const glm::dvec2 b = glm::clamp(barycentric(f.corner, q), 0.0, 1.0);
+                // Inside the triangle up to rounding: clamped back onto it (u, v >= 0, u + v <= 1).
+                glm::dvec2 b = glm::max(barycentric(f.corner, q), 0.0);
+                if (b.x + b.y > 1.0) b /= b.x + b.y;
                 const SurfaceHit at = geometry.surfaceAt(f.mesh, f.triangle, float(b.x), float(b.y));
                 for (int side = 0; side < 2; ++side) {
                     const auto stream = static_cast<std::uint32_t>(2 * t + side);
