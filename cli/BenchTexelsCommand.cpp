@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -81,6 +82,16 @@ std::optional<double> timeTo(const std::vector<Point>& curve, double Point::*err
     return std::nullopt;
 }
 
+// Refuses an output path that cannot be written before any work starts (nothing computed is lost
+// to a typo at the end).
+void requireOutputDirectory(const std::string& path, const char* option) {
+    const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
+    if (!std::filesystem::is_directory(parent)) {
+        throw Error(std::string("bench texels: ") + option + " " + path + ": the directory " + parent.string() +
+                    " does not exist");
+    }
+}
+
 std::string formatSeconds(std::optional<double> s) {
     if (!s) return "not reached";
     char b[32];
@@ -93,6 +104,18 @@ int runBenchTexels(TexelBenchOptions o) {
     for (std::vector<std::uint32_t>* list : {&o.directions, &o.bakeSpp, &o.imageSpp}) {
         std::sort(list->begin(), list->end());
         list->erase(std::unique(list->begin(), list->end()), list->end());
+    }
+    std::ofstream csv;
+    if (!o.csv.empty()) {
+        requireOutputDirectory(o.csv, "--csv");
+        csv.open(o.csv);
+        if (!csv) throw Error("bench texels: --csv " + o.csv + ": cannot be written");
+    }
+    if (!o.exr.empty()) {
+        requireOutputDirectory(o.exr, "--exr");
+        if (std::filesystem::path(o.exr).extension() != ".exr") {
+            throw Error("bench texels: --exr " + o.exr + ": the file must end in .exr");
+        }
     }
     Scene scene = loadScene(o.scene);
     if (o.width > 0) scene.camera.resolution.x = o.width;
@@ -136,6 +159,12 @@ int runBenchTexels(TexelBenchOptions o) {
                 "without covered area\n",
                 o.referenceSpp, reference.seconds, static_cast<unsigned long long>(reference.nonFiniteSamples),
                 static_cast<unsigned long long>(reference.emptyTexels));
+    const auto lit = [](const std::vector<glm::vec3>& side) {
+        return std::any_of(side.begin(), side.end(), [](const glm::vec3& v) { return v != glm::vec3(0.0f); });
+    };
+    if (!lit(reference.radiance.side[0]) && !lit(reference.radiance.side[1])) {
+        throw Error("bench texels: " + o.scene + ": no texel reflects any light (nothing lights the scene's surfaces)");
+    }
     ReferenceRenderer imageReference(scene, 0.0, paths);
     t = Clock::now();
     for (std::uint32_t s = 0; s < o.imageReferenceSpp; ++s) imageReference.renderPass(s, kReferenceSeed);
@@ -193,17 +222,12 @@ int runBenchTexels(TexelBenchOptions o) {
     for (std::size_t i = 0; i < border.size(); ++i) interior[i] = !border[i];
 
     std::printf("\n| method | budget | seconds | texel relMSE | image relMSE |\n|---|---|---|---|---|\n");
-    std::ofstream csv;
-    if (!o.csv.empty()) {
-        csv.open(o.csv);
-        if (!csv) throw Error("bench texels: cannot write " + o.csv);
-        csv << "method,budget,seconds,texel_relmse,image_relmse\n";
-    }
+    if (csv.is_open()) csv << "method,budget,seconds,texel_relmse,image_relmse\n";
     for (const std::vector<Point>* curve : {&baker, &atlas, &pathTracer}) {
         for (const Point& p : *curve) {
             std::printf("| %s | %u %s | %.3f | %.4g | %.4g |\n", p.method.c_str(), p.budget,
                         p.method == "atlas" ? "directions" : "spp", p.seconds, p.texelRelMse, p.imageRelMse);
-            if (csv) csv << p.method << "," << p.budget << "," << p.seconds << "," << p.texelRelMse << "," << p.imageRelMse << "\n";
+            if (csv.is_open()) csv << p.method << "," << p.budget << "," << p.seconds << "," << p.texelRelMse << "," << p.imageRelMse << "\n";
         }
     }
     std::printf("\natlas resolve per view: %.3f s (median of %zu)\n", perView, resolveSeconds.size());

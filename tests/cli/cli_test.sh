@@ -292,6 +292,9 @@ bench_texels)
     done
     expected="is animated; the texel-space reference bakes one moment"
     expect_error "$bl" bench texels data/cornell-box/cornell-animated.toml
+    # An output that cannot be written is refused before any work, not after it.
+    expected="--csv $out/missing/t.csv: the directory $out/missing does not exist"
+    expect_error "$bl" bench texels data/cornell-box/cornell.toml --csv "$out/missing/t.csv"
     ;;
 *)
     fail "unknown case $case_name"
