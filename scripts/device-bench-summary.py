@@ -33,17 +33,22 @@ def is_wall(name):
 
 
 def per_pass(out):
-    """Per configuration, from the pass totals after iterations 1, 1 + F and 1 + 3F (each checkpoint
-    resolves once): per iteration = ((T3 - T2) - (T2 - T1)) / F, per resolve = (T2 - T1) - F x that."""
+    """Per configuration, from the pass totals after iterations 1 + 2F, 1 + 3F and 1 + 5F (T1, T2, T3;
+    each checkpoint resolves once): per iteration = ((T3 - T2) - (T2 - T1)) / F, per resolve =
+    (T2 - T1) - F x that. The checkpoint after the first iteration gives its wall time and the passes
+    that ran then only; the iterations between it and T1 are a warm-up (the GPU's clocks ramp up).
+    A run of an older kit (checkpoints after 1 and 1 + F, end after 1 + 3F) reads with T1 the first."""
     rows = []
     base = os.path.join(out, "passes")
     for config in sorted(os.listdir(base)) if os.path.isdir(base) else []:
         d = os.path.join(base, config)
         checkpoints = sorted(int(f.split(".")[1]) for f in os.listdir(d) if f.count(".") == 2 and f.endswith(".json"))
         runs = [load(os.path.join(d, f"run.{n}.json")) for n in checkpoints] + [load(os.path.join(d, "run.json"))]
-        if len(runs) != 3 or any(r is None for r in runs):
+        if len(runs) not in (3, 4) or any(r is None for r in runs):
             rows.append({"config": config, "error": "the run did not finish (see its log)"})
             continue
+        first = runs[0]
+        runs = runs[-3:]
         a, b, c = runs
         n1, n2, n3 = a["iterations"], b["iterations"], c["iterations"]
         frames = n2 - n1
@@ -51,10 +56,11 @@ def per_pass(out):
             rows.append({"config": config, "error": f"unexpected iterations {n1}, {n2}, {n3}"})
             continue
         total = [{p["name"]: p for p in r["passes"]} for r in runs]
+        first_passes = {p["name"]: p for p in first["passes"]}
         passes, per_resolve, first_only = {}, {}, {}
         for name, p in total[2].items():
             t1, t2, t3 = (total[i][name]["total_ms"] if name in total[i] else 0.0 for i in range(3))
-            if name in total[0] and total[0][name]["count"] == p["count"]:
+            if name in first_passes and first_passes[name]["count"] == p["count"]:
                 first_only[name] = p["total_ms"]  # e.g. the lights' shadow maps of a static scene
                 continue
             it = ((t3 - t2) - (t2 - t1)) / frames
@@ -68,7 +74,7 @@ def per_pass(out):
             "settings": c.get("settings", {}), "setup_seconds": c["setup_seconds"],
             # Wall time counts iterate() only (no resolve): the last 3F iterations.
             "wall_ms_per_iteration": (c["wall_seconds"] - a["wall_seconds"]) * 1000.0 / (n3 - n1),
-            "first_iteration_wall_ms": a["wall_seconds"] * 1000.0,
+            "first_iteration_wall_ms": first["wall_seconds"] * 1000.0,
             "gpu_ms_per_iteration": sum(v for k, v in passes.items() if not is_wall(k)),
             "passes_ms_per_iteration": passes, "resolve_ms": per_resolve,
             "first_iteration_only_ms": first_only,
@@ -114,6 +120,19 @@ def equal_time(out):
     return result
 
 
+def texel_rows(out):
+    """bench texels' CSV (method, budget, seconds, texel and image relMSE; nan where a method has none)."""
+    path = os.path.join(out, "texels", "cornell-point.csv")
+    if not os.path.exists(path):
+        return []
+    def num(v):
+        x = float(v)
+        return None if x != x else x  # nan -> null in JSON
+    return [{"method": r["method"], "budget": int(float(r["budget"])), "seconds": float(r["seconds"]),
+             "texel_relmse": num(r["texel_relmse"]), "image_relmse": num(r["image_relmse"])}
+            for r in csv.DictReader(open(path))]
+
+
 def fmt(v, spec=".3g"):
     return "—" if v is None else format(v, spec)
 
@@ -126,7 +145,7 @@ def main(out):
         "machine": dict(line.split(": ", 1) for line in read(os.path.join(out, "machine.txt")).splitlines() if ": " in line),
         "devices": read(os.path.join(out, "devices.txt")).splitlines(),
         "passes": per_pass(out), "bundles": bundles(out), "equal_time": equal_time(out),
-        "failed": [" ".join(s) for s in failed], "skipped": [" ".join(s) for s in skipped],
+        "texels": texel_rows(out), "failed": [" ".join(s) for s in failed], "skipped": [" ".join(s) for s in skipped],
     }
     m = summary["machine"]
     md = ["# bundlelab device benchmark", "",
@@ -137,9 +156,10 @@ def main(out):
                + (", ".join(" ".join(s[:2]) for s in skipped) or "none"), ""]
 
     md += ["## Milliseconds per pass and iteration", "",
-           "From the modes' GPU timestamps in one process after iterations 1, 1 + F and 1 + 3F (each checkpoint resolves "
-           "the image once): per iteration ((T3 − T2) − (T2 − T1)) / F, per resolve what is left of T2 − T1; set-up "
-           "(scene upload, BVH, atlas, pipelines) and the first iteration's shader compilation fall out. Wall = the mode's "
+           "From the modes' GPU timestamps in one process after iterations 1 + 2F, 1 + 3F and 1 + 5F (T1, T2, T3; each "
+           "checkpoint resolves the image once): per iteration ((T3 − T2) − (T2 − T1)) / F, per resolve what is left of "
+           "T2 − T1; set-up (scene upload, BVH, atlas, pipelines), the first iteration's shader compilation and the "
+           "GPU's clock ramp (the 2F warm-up iterations) fall out. Wall = the mode's "
            "iterate() calls (host work and waits included; \"(wall)\" passes are host spans around GPU passes). Passes "
            "that ran in the first iteration only (the lights' shadow maps of a static scene) are listed apart.", "",
            "| mode | scene | size | F | set-up s | first iteration wall ms | wall ms/it | GPU ms/it | passes (ms/it) | per resolve (ms) | first iteration only (ms) |",

@@ -2,8 +2,9 @@
 # The GPU benchmark kit's one call (benchmarks, not pass/fail): on the machine's Vulkan device, within
 # a time budget (default 8 minutes),
 #   1. every mode's milliseconds per pass and iteration ([TO12] Table 1's shape): each configuration
-#      renders 1 + 3F iterations with checkpoints after 1 and 1 + F; from the three pass totals, a
-#      pass's cost per iteration and per resolve, without set-up and first-use shader compilation;
+#      renders 1 + 5F iterations with checkpoints after 1, 1 + 2F and 1 + 3F; from the last three pass
+#      totals, a pass's cost per iteration and per resolve, without set-up, first-use shader
+#      compilation or the GPU's clock ramp (the first 1 + 2F iterations are a warm-up);
 #   2. bundle build + walk against the rasterization floor, both build backends, Sponza and the bunny;
 #   3. each mode against the path tracer at equal time on this machine's cores (the experiment runner;
 #      relMSE against a 1024-spp reference);
@@ -102,7 +103,7 @@ else
         "multibounce sponza $sponza 2"
         "multibounce cornell-area $cornell_area 4"
         "atlas cornell $cornell 16"
-        "atlas sponza $sponza 8"
+        "atlas sponza $sponza 16"
         "skylight bunny-envmap $bunny_env 16"
     )
 fi
@@ -112,19 +113,23 @@ for config in "${configs[@]}"; do
     for kv in $settings; do sets+=(--set "$kv"); done
     dir=$out/passes/$mode-$name
     mkdir -p "$dir"
-    n=$((1 + 3 * frames))
+    n=$((1 + 5 * frames))
     rm -f "$dir"/run* # a reused OUTDIR must not summarise an older run
     left=$(remaining)
     if ((left < 20)); then
         echo "passes $mode-$name skipped (budget)" >>"$out/steps.txt"; log "skip $mode $name"; continue
     fi
     log "passes: $mode $name, $n iterations"
-    # One process, checkpoints after iterations 1 and 1 + F, the end after 1 + 3F: every checkpoint
-    # resolves the image (atlas times its resolve passes), so the two differences hold F and 2F
-    # iterations plus one resolve each; their difference is F iterations alone (set-up, first-use
-    # shader compilation and resolves left out), and the resolve is what remains of the first.
+    # One process, checkpoints after iterations 1, 1 + 2F and 1 + 3F, the end after 1 + 5F: every
+    # checkpoint resolves the image (atlas times its resolve passes), so the last two differences hold
+    # F and 2F iterations plus one resolve each; their difference is F iterations alone (set-up,
+    # first-use shader compilation and resolves left out), and the resolve is what remains of the
+    # first. The first checkpoint gives the first iteration's figures; the 2F iterations after it are
+    # a warm-up: an H200 running a host-bound mode (atlas on Sponza) sat at low clocks for its first
+    # tens of iterations, and a difference across that ramp gave negative per-iteration times.
     timeout "$left" "$bl" render "$scene" --mode "$mode" --width "$width" --height "$height" --iterations "$n" \
-        --checkpoint 1 --checkpoint $((1 + frames)) "${sets[@]}" "${device[@]}" --out "$dir/run.exr" >"$dir/run.log" 2>&1
+        --checkpoint 1 --checkpoint $((1 + 2 * frames)) --checkpoint $((1 + 3 * frames)) "${sets[@]}" "${device[@]}" \
+        --out "$dir/run.exr" >"$dir/run.log" 2>&1
     rc=$?
     echo "passes $mode-$name $(status $rc)" >>"$out/steps.txt"
 done

@@ -116,6 +116,7 @@ BundlePool::BundlePool(const vk::Context& ctx, const gpu::GpuScene& scene, const
     mHeads = vk::Buffer(ctx, heads * sizeof(std::uint32_t), kFilled, vk::MemoryUse::Device);
     mFrames = vk::Buffer(ctx, options.slots * sizeof(shader::BundleFrame), kFilled, vk::MemoryUse::Device);
     mCounters = vk::Buffer(ctx, sizeof(shader::BundleCounters), kFilled, vk::MemoryUse::Device);
+    mStatusCopy = vk::Buffer(ctx, sizeof(shader::BundleCounters), VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
     allocateNodes(options.initialNodes ? options.initialNodes : kInitialNodesPerPixel * heads);
 
     VkDevice device = ctx.device();
@@ -201,6 +202,7 @@ void BundlePool::checkSlot(std::uint32_t slot, const shader::BundleFrame& frame)
 void BundlePool::recordReset(VkCommandBuffer cmd) const {
     const shader::BundleCounters counters{0, static_cast<std::uint32_t>(mCapacity), 0, 0};
     vkCmdUpdateBuffer(cmd, mCounters.get(), 0, sizeof(counters), &counters);
+    vkCmdUpdateBuffer(cmd, mStatusCopy.get(), 0, sizeof(counters), &counters);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
@@ -272,6 +274,17 @@ void BundlePool::recordTriangles(VkCommandBuffer cmd, std::uint32_t slot, const 
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                           VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_HOST_BIT);
+    recordStatusCopy(cmd);
+}
+
+void BundlePool::recordStatusCopy(VkCommandBuffer cmd) const {
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
+                               VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                      VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    const VkBufferCopy region{0, 0, sizeof(shader::BundleCounters)};
+    vkCmdCopyBuffer(cmd, mCounters.get(), mStatusCopy.get(), 1, &region);
+    // The fence alone does not make device writes visible to host reads.
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_PIPELINE_STAGE_2_HOST_BIT);
 }
 
 void BundlePool::recordSort(VkCommandBuffer cmd, std::uint32_t slot, vk::GpuTimer* timer) const {
@@ -301,7 +314,7 @@ void BundlePool::recordStatistics(VkCommandBuffer cmd, std::uint32_t slot, VkDev
 
 BundlePoolStatus BundlePool::status() const {
     shader::BundleCounters c{};
-    mCounters.download(*mContext, &c, sizeof(c));
+    mStatusCopy.download(*mContext, &c, sizeof(c)); // mapped: a plain copy
     BundlePoolStatus s;
     s.capacity = mCapacity;
     s.requested = std::uint64_t(c.allocated) + (std::uint64_t(c.excessHigh) << 32 | c.excessLow);

@@ -88,8 +88,13 @@ public:
     void recordStatistics(VkCommandBuffer cmd, std::uint32_t slot, VkDeviceAddress stats,
                           vk::GpuTimer* timer = nullptr) const;
 
-    // After the fence of the command buffer with the builds.
+    // After the fence of the command buffer with the builds: read from a host-visible copy that
+    // every reset and build records at its end (no submit of its own: on a GPU, a download per build
+    // (staging allocation, submit, wait) cost more than the build).
     BundlePoolStatus status() const;
+    // Records the copy of the allocator's counters that status() reads (recordReset, recordBuild and
+    // the compute backend's builds call it; callable after any other pass that allocates nodes).
+    void recordStatusCopy(VkCommandBuffer cmd) const;
     // Grows the node pool to what `status` asked for plus headroom, within the limits. False when
     // the limits do not allow it (the caller must split its work, e.g. into tiles). Contents are lost.
     bool grow(const BundlePoolStatus& status);
@@ -129,6 +134,7 @@ private:
     vk::Buffer mHeads;
     vk::Buffer mFrames;
     vk::Buffer mCounters;
+    vk::Buffer mStatusCopy; // host-visible: the counters as of the last recorded reset or build
     vk::Buffer mNodes;
     vk::Buffer mPayload;
     vk::Buffer mPrevious;

@@ -64,6 +64,13 @@ def main(d):
         md.append(f"| {row['scene']} | {row['label']} | {med([s['iterations'] for s in same], '.0f')} | "
                   f"{med([s['relmse'] for s in same], '.3g')} | {med([s['relmse_over_path_tracer'] for s in same], '.3g')} | "
                   f"{med([s['mean_ratio'][1] if s['mean_ratio'] else None for s in same], '.4f')} |")
+    if first.get("texels"):
+        md += ["", "## The atlas in texel space (point-lit Cornell box; seconds and relMSE)", "",
+               "| method | budget | seconds | texel relMSE | image relMSE |", "|---|---|---|---|---|"]
+        for row in first["texels"]:
+            same = matching(runs, "texels", lambda r: (r["method"], r["budget"]), row)
+            md.append(f"| {row['method']} | {row['budget']} | {med([s['seconds'] for s in same], '.3g')} | "
+                      f"{med([s['texel_relmse'] for s in same], '.3g')} | {med([s['image_relmse'] for s in same], '.3g')} |")
     open(os.path.join(d, "medians.md"), "w").write("\n".join(md) + "\n")
     print("\n".join(md))
 
