@@ -42,7 +42,7 @@ def load(a, b, r, i):
     d = json.load(open(f"{out}/a{a}-b{b}-r{r}-i{i}.json"))
     return {p["name"]: (p["total_ms"], p["count"]) for p in d["passes"]}, d["counters"]
 named = ["bundle build", "bundle sort", "exchange", "update"]
-wall = ["build + sort (wall)", "exchange + update (wall)"]
+wall = ["build + sort (wall)", "direction (wall)", "exchange + update (wall)"]
 print("| atlas | bundle | build | sort | exchange | update | glossy | other | GPU sum | wall ms / direction | "
       "hits / direction | hits exchanged / s (wall) |")
 print("|---|---|---|---|---|---|---|---|---|---|---|---|")

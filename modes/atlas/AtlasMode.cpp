@@ -43,7 +43,6 @@ using atlasmode::kStorage;
 namespace {
 // First pool size in nodes per bundle pixel: closed rooms seen along a direction cross ~2-4
 // surfaces per pixel inside the frame's disc; the pool grows to what a direction needs.
-constexpr std::uint64_t kInitialNodesPerPixel = 4;
 // Keys of the sub-pixel offset of each direction's grid: decorrelated from the direction's own
 // numbers (DirectionSampler) by distinct hash keys.
 constexpr std::uint32_t kGridKeyX = 0x68e31da4u;
@@ -169,7 +168,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     options.slotPixels = resolution * resolution;
     options.payload = BundlePayload::Hit;
     options.sortable = true;
-    options.initialNodes = kInitialNodesPerPixel * options.slotPixels;
+    options.initialNodes = std::uint64_t(mOptions.poolNodesPerPixel) * options.slotPixels;
     options.memoryCapBytes = mOptions.memoryCapBytes;
     g->exchange.pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
     // Build, sort, exchange, update, and per view sample G-buffer, view raster, shade.
@@ -257,12 +256,10 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     setUpFirstShot(scene);
 }
 
-// Builds and sorts this direction's bundle; grows the pool and builds again when it did not fit,
-// and refuses what the limits cannot hold.
-shader::AtlasDirection AtlasMode::buildBundle(const IterationInfo& info) {
-    Gpu& g = *mGpu;
+shader::BundleFrame AtlasMode::bundleFrame(std::uint32_t i, std::uint64_t seed) const {
+    const Gpu& g = *mGpu;
     const std::uint32_t resolution = mOptions.bundleResolution;
-    const BundleDirection dir = g.exchange.directions->sample(directionIndex(mIterations));
+    const BundleDirection dir = g.exchange.directions->sample(directionIndex(i));
     // A frame of R + 1 pixels of the R-pixel frame's size (radius scaled by (R + 1) / R), shifted
     // by a random sub-pixel offset in [-1/2, 1/2) pixel each way: it still covers the bounding
     // sphere, and every surface point's ray is uniformly placed within its pixel over directions
@@ -270,11 +267,39 @@ shader::AtlasDirection AtlasMode::buildBundle(const IterationInfo& info) {
     // per-texel pixel counts rely on.
     const float radius = g.bounds.radius() * float(resolution + 1) / float(resolution);
     shader::BundleFrame frame = bundleFrameForSphere(dir.omega, dir.rotation, g.bounds.center(), radius, resolution + 1);
-    const auto seed = static_cast<std::uint32_t>(info.seed);
-    const float jx = shader::blHashRandom(seed ^ kGridKeyX, mIterations) - 0.5f;
-    const float jy = shader::blHashRandom(seed ^ kGridKeyY, mIterations) - 0.5f;
+    const auto key = static_cast<std::uint32_t>(seed);
+    const float jx = shader::blHashRandom(key ^ kGridKeyX, i) - 0.5f;
+    const float jy = shader::blHashRandom(key ^ kGridKeyY, i) - 0.5f;
     frame.origin -= (jx * frame.axisX + jy * frame.axisY) * frame.pixelSize;
+    return frame;
+}
 
+void AtlasMode::recordBundle(VkCommandBuffer cmd, const shader::BundleFrame& frame, double time) {
+    Gpu& g = *mGpu;
+    g.exchange.pool->recordReset(cmd);
+    g.exchange.pool->recordBuild(cmd, 0, frame, BundleGeometry::triangles(time), &g.timer);
+    g.exchange.pool->recordSort(cmd, 0, &g.timer);
+}
+
+// Grows the pool and builds again when the bundle did not fit, and refuses what the limits cannot hold.
+void AtlasMode::ensureBundle(const IterationInfo& info, const shader::BundleFrame& frame) {
+    Gpu& g = *mGpu;
+    const std::optional<AtlasExchangeState::Prebuilt>& built = g.exchange.prebuilt;
+    if (built && built->iteration == mIterations && built->seed == info.seed && built->time == info.time) {
+        return;
+    }
+    g.exchange.nodesLast = buildFitting(*g.exchange.pool, {"atlas", 1, frame.width}, [&] {
+        const WallSpan wall(g.exchange.wallBuild);
+        mContext->submitAndWait([&](VkCommandBuffer cmd) {
+            g.timer.begin(cmd);
+            recordBundle(cmd, frame, info.time);
+        });
+        g.timer.collect();
+    }, g.exchange.rebuilds);
+}
+
+shader::AtlasDirection AtlasMode::directionParams(const shader::BundleFrame& frame) const {
+    const Gpu& g = *mGpu;
     shader::AtlasDirection params{};
     // Radiance arriving from +omega at the last hit of a list, from -omega at the first.
     // Bounce-by-bounce: the environment is a source, sent in pass 1 only (later passes send reflected light).
@@ -286,17 +311,6 @@ shader::AtlasDirection AtlasMode::buildBundle(const IterationInfo& info) {
     params.inverseDensity = 1.0f / density;
     params.glossy = g.glossy.transfer ? 1u : 0u;
     params.next = g.exchange.directions->sample(directionIndex(mIterations + 1)).omega;
-
-    g.exchange.nodesLast = buildFitting(*g.exchange.pool, {"atlas", 1, frame.width}, [&] {
-        const WallSpan wall(g.exchange.wallBuild);
-        mContext->submitAndWait([&](VkCommandBuffer cmd) {
-            g.timer.begin(cmd);
-            g.exchange.pool->recordReset(cmd);
-            g.exchange.pool->recordBuild(cmd, 0, frame, BundleGeometry::triangles(info.time), &g.timer);
-            g.exchange.pool->recordSort(cmd, 0, &g.timer);
-        });
-        g.timer.collect();
-    }, g.exchange.rebuilds);
     return params;
 }
 
@@ -326,7 +340,9 @@ void AtlasMode::iterate(const IterationInfo& info) {
         ++mIterations; // emitters only: nothing is reflected
         return;
     }
-    shader::AtlasDirection params = buildBundle(info);
+    const shader::BundleFrame frame = bundleFrame(mIterations, info.seed);
+    ensureBundle(info, frame);
+    shader::AtlasDirection params = directionParams(frame);
 
     const std::uint32_t bundlePixels = g.exchange.pool->slotPixels();
     shader::AtlasExchangePush exchange{};
@@ -432,9 +448,24 @@ void AtlasMode::iterate(const IterationInfo& info) {
         }
         g.timer.stop(cmd, scope);
         vk::computeToHost(cmd);
+        // The next direction's bundle, once this one's exchange and gather have read its lists.
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                              VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        recordBundle(cmd, bundleFrame(mIterations + 1, info.seed), info.time);
     });
     g.timer.collect();
     wall.reset();
+    // Whether the next direction's bundle fit: if not, the pool grows now and that direction
+    // builds on its own (ensureBundle; where the pool cannot grow, that build says why).
+    const BundlePoolStatus status = g.exchange.pool->status();
+    g.exchange.prebuilt.reset();
+    if (!status.overflowed()) {
+        g.exchange.prebuilt = AtlasExchangeState::Prebuilt{mIterations + 1, info.seed, info.time};
+        g.exchange.nodesLast = status.requested;
+    } else if (g.exchange.pool->grow(status)) {
+        ++g.exchange.rebuilds;
+    }
     mTotalWeight += weight;
     if (indirect) {
         mIndirectWeight += weightIndirect;

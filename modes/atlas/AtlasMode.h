@@ -147,6 +147,7 @@ public:
     static constexpr const char* kShadowResolution = "shadow_resolution";
     static constexpr const char* kLightSamples = "light_samples";
     static constexpr const char* kMemoryCap = "memory_cap_mib";
+    static constexpr const char* kPoolNodes = "pool_nodes_per_pixel";
     static constexpr const char* kGlossy = "glossy";
     static constexpr const char* kDelayIndirect = "delay_indirect";
     static constexpr const char* kFirstShot = "first_shot";
@@ -195,8 +196,15 @@ public:
 
 private:
     struct Gpu;
-    // Builds and sorts this direction's bundle; its parameters (the sender's left for iterate()).
-    shader::AtlasDirection buildBundle(const IterationInfo& info);
+    // The i-th direction's bundle frame (its direction and sub-pixel jitter, fixed by i and the seed).
+    shader::BundleFrame bundleFrame(std::uint32_t i, std::uint64_t seed) const;
+    // Records the reset, build and sort of the bundle for `frame` (slot 0).
+    void recordBundle(VkCommandBuffer cmd, const shader::BundleFrame& frame, double time);
+    // Makes this direction's bundle: kept from the previous direction's submission, which built it
+    // at its end, or built now in a submission of its own (the first direction, after an overflow).
+    void ensureBundle(const IterationInfo& info, const shader::BundleFrame& frame);
+    // This direction's parameters for the exchange (the sender's left for iterate()).
+    shader::AtlasDirection directionParams(const shader::BundleFrame& frame) const;
     // Point/spot lights at scene time `time` into the direct atlas and the first sender.
     void lightDirect(double time);
     void recordDirect(VkCommandBuffer cmd, const shader::AtlasDirectPush& push, const char* name, std::uint32_t count);

@@ -22,6 +22,7 @@ AtlasModeOptions atlasModeOptions(const Settings& s) {
     o.shadowResolution = uint32Of(M::kShadowResolution);
     o.lightSamples = uint32Of(M::kLightSamples);
     o.memoryCapBytes = static_cast<std::uint64_t>(s.getInt(M::kMemoryCap)) << 20;
+    o.poolNodesPerPixel = uint32Of(M::kPoolNodes);
     o.glossy = s.getString(M::kGlossy);
     o.delayIndirect = uint32Of(M::kDelayIndirect);
     o.firstShot = s.getString(M::kFirstShot);

@@ -26,6 +26,7 @@ struct AtlasModeOptions {
     std::uint32_t shadowResolution = 0;    // shadow_resolution
     std::uint32_t lightSamples = 0;        // light_samples: sample points per texel side (n x n)
     std::uint64_t memoryCapBytes = 0;      // memory_cap_mib, in bytes
+    std::uint32_t poolNodesPerPixel = 0;   // pool_nodes_per_pixel: the bundle pool's first size
     std::string glossy;                    // glossy: transfer | gather | off
     std::uint32_t delayIndirect = 0;       // delay_indirect
     std::string firstShot;                 // first_shot: auto | on | off

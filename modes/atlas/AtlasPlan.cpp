@@ -59,6 +59,10 @@ std::vector<ParamSpec> AtlasMode::parameters() {
          "node storage limit of the bundle pool (0: half the largest device-local heap); a direction that needs more is "
          "refused",
          0, 1 << 20, {}},
+        {kPoolNodes, std::int64_t{4}, "nodes",
+         "the bundle pool's first size, per bundle pixel; a direction whose bundle needs more grows it (counted in "
+         "bundle_rebuilds): a deep scene starts larger to skip the first rebuilds",
+         1, 1 << 16, {}},
     };
     return withEmitterPointParameters(std::move(params), "direction",
                                       "the first shot (first_shot), the area emitters' direct light", 1);
