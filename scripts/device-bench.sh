@@ -14,18 +14,24 @@
 # overrun the budget is skipped and listed as skipped; a failed render is listed with its exit status.
 # Runs from the unpacked kit (scripts/device-kit.sh) or from a checkout with build/bundlelab.
 #
-#   scripts/device-bench.sh OUTDIR [--quick] [--budget SECONDS] [--device D]
+#   scripts/device-bench.sh OUTDIR [--quick] [--budget SECONDS] [--device D] [--only STEP]...
 #   --quick: tiny sizes and budgets (the test runs it on lavapipe), not for figures.
+#   --only STEP: run this step (passes, bundles, equal-time, texels; repeatable), the others not at all
+#   (their budget shares stay: a step still ends where the full run's would).
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:?usage: device-bench.sh OUTDIR [--quick] [--budget SECONDS] [--device D]}
 shift
-quick=0 budget=480 device=()
+quick=0 budget=480 device=() only=()
 while (($#)); do
     case $1 in
         --quick) quick=1 ;;
         --budget) budget=$2; shift ;;
         --device) device=(--device "$2"); shift ;;
+        --only)
+            case $2 in passes|bundles|equal-time|texels) only+=("$2") ;;
+                *) echo "device-bench: --only $2: not a step (passes, bundles, equal-time, texels)" >&2; exit 2 ;; esac
+            shift ;;
         *) echo "device-bench: unknown option $1" >&2; exit 2 ;;
     esac
     shift
@@ -45,6 +51,7 @@ start=$(date +%s)
 # texel space the rest), so a
 # slow device still reaches every step; a render that would start with under 20 s left is skipped.
 step_end=$start
+wanted() { ((${#only[@]} == 0)) || [[ " ${only[*]} " == *" $1 "* ]]; }
 step() { step_end=$((start + budget * $1 / 100)); }
 remaining() { echo $((step_end - $(date +%s))); }
 log() { echo "[$(($(date +%s) - start)) s] $*" | tee -a "$out/log.txt"; }
@@ -107,6 +114,7 @@ else
         "skylight bunny-envmap $bunny_env 16"
     )
 fi
+wanted passes || configs=()
 for config in "${configs[@]}"; do
     read -r mode name scene frames settings <<<"$config"
     sets=()
@@ -141,6 +149,7 @@ if ((quick)); then
 else
     bench_scenes=("sponza $sponza" "bunny $bunny"); res=(--resolution 512 --resolution 1024 --resolution 2048); dirs=8
 fi
+wanted bundles || bench_scenes=()
 for entry in "${bench_scenes[@]}"; do
     read -r name scene <<<"$entry"
     for backend in raster compute; do
@@ -233,7 +242,9 @@ mode     = "atlas"
 settings = { $at }
 EOF
 left=$(remaining)
-if ((left < 60)); then
+if ! wanted equal-time; then
+    :
+elif ((left < 60)); then
     echo "equal-time all skipped (budget)" >>"$out/steps.txt"
 else
     log "equal time: $seconds s per task"
@@ -258,7 +269,9 @@ else
 fi
 rm -f "$out"/texels/cornell-point.* # a skipped step must not show an earlier run's tables
 left=$(remaining)
-if ((left < 20)); then
+if ! wanted texels; then
+    :
+elif ((left < 20)); then
     echo "texels cornell-point skipped (budget)" >>"$out/steps.txt"
 else
     log "texels: cornell-point"

@@ -43,6 +43,10 @@ grep -qE "^\| atlas \| 8 directions \| [0-9.]+ \| [0-9.e+-]+ \|" "$md" || fail "
 grep -qE "^\| baker \| 4 spp \|" "$md" || fail "no texel-space row for the baker"
 /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['passes'] and j['bundles'] and j['equal_time']" \
     "$out/bench/summary.json" || fail "summary.json incomplete"
+# --only runs the steps named and no other.
+"$kit/scripts/device-bench.sh" "$out/only" --quick --only texels >"$out/only.log" 2>&1 || fail "device-bench.sh --only texels failed"
+[[ $(cat "$out/only/steps.txt") == "texels cornell-point ok" ]] || fail "--only texels ran: $(tr '\n' ';' <"$out/only/steps.txt")"
+"$kit/scripts/device-bench.sh" "$out/only" --only bogus 2>/dev/null && fail "--only bogus was accepted"
 # A step that failed fails the summary and is named in it.
 echo "passes planted-failure failed (exit 3)" >>"$out/bench/steps.txt"
 /usr/bin/python3 "$kit/scripts/device-bench-summary.py" "$out/bench" >"$out/failed.txt" && fail "a failed step did not fail the summary"
