@@ -385,7 +385,8 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
             }
             out.push_back(name + ": material '" + m.name + "' has a glossy exponent" + b +
                           ", so its highlights need many times that many iterations (noise, not bias); raster, "
-                          "bidir or the reference sample the lobe itself");
+                          "bidir or the reference sample the lobe itself" +
+                          (name == "skylight" ? std::string(", as skylight does with glossy_control_variate = on") : ""));
         }
     }
 

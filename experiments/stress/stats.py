@@ -15,6 +15,15 @@ def stderr(xs):
     return math.sqrt(sum((x - m) ** 2 for x in xs) / (len(xs) - 1) / len(xs))
 
 
+def welch_dof(se_a, n_a, se_b, n_b):
+    """Welch-Satterthwaite degrees of freedom of a difference of two means with standard errors se_a,
+    se_b from n_a, n_b values: near n_a - 1 where b's error is negligible, never below min(n) - 1."""
+    lo = min(n_a, n_b) - 1
+    num = (se_a ** 2 + se_b ** 2) ** 2
+    den = (se_a ** 4 / (n_a - 1) if n_a > 1 else 0.0) + (se_b ** 4 / (n_b - 1) if n_b > 1 else 0.0)
+    return max(lo, num / den) if den > 0 else lo
+
+
 def _t_cdf(x, df):
     """P(T <= x) for x >= 0, by Simpson's rule on the density (smooth; 2000 panels is ample)."""
     c = math.exp(math.lgamma((df + 1) / 2) - math.lgamma(df / 2)) / math.sqrt(df * math.pi)

@@ -70,12 +70,14 @@ def _fmt(x, se):
     return "%.4f ± %.4f" % (x, se)
 
 
-def _judge_ratio(ratios, se, dof, floor, blocks, block_floor, what):
-    """|mean ratio - 1| within t se + floor, and every block's difference within its own."""
+def _judge_ratio(ratios, se, dof, floor, blocks, block_floor, what, block_dof=None):
+    """|mean ratio - 1| within t se + floor, and every block's difference within its own (block_dof:
+    the blocks' degrees of freedom where they differ from the mean's)."""
     t = stats.t_quantile(1 - ALPHA / 2, dof) if dof > 0 else 0.0
     r = stats.mean(ratios) if isinstance(ratios, list) else ratios  # paired: per-seed ratios; else one
     ok_mean = abs(r - 1) <= t * se + floor
-    tb = stats.t_quantile(1 - ALPHA / (2 * max(1, len(blocks))), dof) if dof > 0 else 0.0
+    block_dof = dof if block_dof is None else block_dof
+    tb = stats.t_quantile(1 - ALPHA / (2 * max(1, len(blocks))), block_dof) if block_dof > 0 else 0.0
     worst, worst_excess = 0.0, None  # the block with the largest excess over its tolerance
     for d, dse in blocks:
         excess = abs(d) - (tb * dse + block_floor)
@@ -126,9 +128,13 @@ def against_reference(case_runs, ref_runs):
     for cb, gb in zip(zip(*[r.image.blocks for r in case_runs]), zip(*[r.image.blocks for r in ref_runs])):
         blocks.append(((stats.mean(cb) - stats.mean(gb)) / rg,
                        (stats.stderr(cb) ** 2 + stats.stderr(gb) ** 2) ** 0.5 / rg))
-    dof = min(len(c), len(g)) - 1
+    # The mean's degrees of freedom by Welch-Satterthwaite (the two sides may have different seed
+    # counts and spreads: skylight 8 seeds against the reference's 3, whose error is far smaller);
+    # the blocks keep the conservative min(n) - 1.
+    dof = stats.welch_dof(stats.stderr(c) / rc if rc > 0 else 0.0, len(c), stats.stderr(g) / rg, len(g))
     return _judge_ratio(ratio, se, dof, floor, blocks, floor * ref_runs[0].image.pixels / BLOCK ** 2,
-                        "against the reference (%d seeds each)" % len(c))
+                        "against the reference (%d and %d seeds)" % (len(c), len(g)),
+                        block_dof=min(len(c), len(g)) - 1)
 
 
 def leak(dark_runs, lit_runs):

@@ -48,6 +48,11 @@ std::vector<ParamSpec> SkylightMode::parameters() {
         {kControlVariate, std::string("off"), "",
          "on: add the tabulated unoccluded Lambert irradiance and let bundles estimate only what occluders remove",
          0, 0, {"off", "on"}},
+        {kGlossyControl, std::string("on"), "",
+         "on: glossy lobes' unoccluded light from one lobe-sampled environment lookup per pixel and direction, the "
+         "bundles estimating only what occluders remove from it (a sharp lobe is met every direction, not once in "
+         "e + 1); off: lobes met through the bundle directions alone",
+         0, 0, {"on", "off"}},
         {kGBufferReuse, std::int64_t{1}, "directions",
          "directions that share one jittered G-buffer (the camera pass paid once per k; same mean, the pixel "
          "footprint integrated with k times fewer jitter samples)",
@@ -201,6 +206,9 @@ void SkylightMode::iterate(const IterationInfo& info) {
     push.environmentRotation = g.scene->environmentRotation();
     push.samplePosition = sample.samplePosition;
     push.environmentPresent = g.scene->environmentPresent() ? 1u : 0u;
+    push.glossyControl = mOptions.glossyControl ? 1u : 0u;
+    push.seed = static_cast<std::uint32_t>(info.seed);
+    push.iteration = mIterations;
     if (g.irradiance.get()) {
         push.controlVariate = 1u;
         push.irradianceAddress = split(deviceAddress(*mContext, g.irradiance));
@@ -275,7 +283,7 @@ PassTimes SkylightMode::timings() const {
 
 TradeSettings SkylightMode::trades() const {
     TradeSettings t = tradeSettingsOf(mSettings, {}, kBundleResolution, kFit);
-    t.lobesByBundleDirections = true;
+    t.lobesByBundleDirections = !mOptions.glossyControl; // else each pixel samples its lobe itself
     return t;
 }
 

@@ -56,6 +56,7 @@ public:
     static constexpr const char* kMemoryCap = "memory_cap_mib";
     static constexpr const char* kVisibility = "visibility";
     static constexpr const char* kControlVariate = "control_variate";
+    static constexpr const char* kGlossyControl = "glossy_control_variate";
     static constexpr const char* kBundleBackend = "bundle_backend";
     static constexpr const char* kGBufferReuse = "gbuffer_reuse";
 

@@ -16,6 +16,7 @@ SkylightOptions skylightOptions(const Settings& s) {
     o.memoryCapBytes = static_cast<std::uint64_t>(s.getInt(M::kMemoryCap)) << 20;
     o.depthMapVisibility = s.getString(M::kVisibility) == "depth_map";
     o.controlVariate = s.getString(M::kControlVariate) == "on";
+    o.glossyControl = s.getString(M::kGlossyControl) == "on";
     o.bundleBackend = s.getString(M::kBundleBackend);
     o.gbufferReuse = static_cast<std::uint32_t>(s.getInt(M::kGBufferReuse));
     return o;

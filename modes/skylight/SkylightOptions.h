@@ -20,6 +20,7 @@ struct SkylightOptions {
     std::uint64_t memoryCapBytes = 0;        // memory_cap_mib, in bytes
     bool depthMapVisibility = false;         // visibility = depth_map (else the bundle's lists)
     bool controlVariate = false;             // control_variate = on
+    bool glossyControl = true;               // glossy_control_variate = on
     std::string bundleBackend;               // bundle_backend: auto | raster | compute
     std::uint32_t gbufferReuse = 1;          // gbuffer_reuse: directions per jittered G-buffer
 };

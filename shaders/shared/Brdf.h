@@ -46,20 +46,25 @@ BL_INLINE vec3 blAshikhminShirleyLobe(vec3 specular, float nu, float nv, vec3 n,
 
 BL_INLINE bool blIsAnisotropic(GpuMaterial m) { return m.exponentU != m.exponentV; }
 
+BL_INLINE bool blHasGlossyLobe(GpuMaterial m) { return m.specular.x + m.specular.y + m.specular.z > 0.0f; }
+
+// The glossy lobe of a material alone (zero without specular); symmetric in wi and wo.
+BL_INLINE vec3 blGlossyBrdf(GpuMaterial m, vec3 n, vec3 wi, vec3 wo) {
+    if (!blHasGlossyLobe(m)) {
+        return vec3(0.0f);
+    }
+    if (blIsAnisotropic(m)) {
+        vec3 t;
+        vec3 b;
+        blOrthonormalBasis(n, t, b);
+        return blAshikhminShirleyLobe(m.specular, m.exponentU, m.exponentV, n, t, b, wi, wo);
+    }
+    return blPhongLobe(m.specular, m.exponentU, n, wi, wo);
+}
+
 // Full BRDF of a material: Lambert + glossy lobe. `albedo` may come from a texture.
 BL_INLINE vec3 blEvalBrdf(GpuMaterial m, vec3 albedo, vec3 n, vec3 wi, vec3 wo) {
-    vec3 f = blLambert(albedo);
-    if (m.specular.x + m.specular.y + m.specular.z > 0.0f) {
-        if (blIsAnisotropic(m)) {
-            vec3 t;
-            vec3 b;
-            blOrthonormalBasis(n, t, b);
-            f += blAshikhminShirleyLobe(m.specular, m.exponentU, m.exponentV, n, t, b, wi, wo);
-        } else {
-            f += blPhongLobe(m.specular, m.exponentU, n, wi, wo);
-        }
-    }
-    return f;
+    return blLambert(albedo) + blGlossyBrdf(m, n, wi, wo);
 }
 
 BL_NAMESPACE_END

@@ -58,6 +58,29 @@ BL_INLINE float blAshikhminShirleyPdf(float nu, float nv, vec3 n, vec3 t, vec3 b
     return pdfH / (4.0f * kh);
 }
 
+// The glossy lobe's own sampling: wo about wi's mirror direction (Phong) or by half vector
+// (Ashikhmin-Shirley), and its density over the whole sphere (a direction below the surface has
+// density but a zero lobe).
+BL_INLINE vec3 blSampleGlossyLobe(GpuMaterial m, vec3 n, vec3 wi, vec2 v) {
+    if (blIsAnisotropic(m)) {
+        vec3 t;
+        vec3 b;
+        blOrthonormalBasis(n, t, b);
+        return blSampleAshikhminShirley(m.exponentU, m.exponentV, n, t, b, wi, v);
+    }
+    return blSamplePhongLobe(m.exponentU, 2.0f * dot(n, wi) * n - wi, v);
+}
+
+BL_INLINE float blGlossyLobePdf(GpuMaterial m, vec3 n, vec3 wi, vec3 wo) {
+    if (blIsAnisotropic(m)) {
+        vec3 t;
+        vec3 b;
+        blOrthonormalBasis(n, t, b);
+        return blAshikhminShirleyPdf(m.exponentU, m.exponentV, n, t, b, wi, wo);
+    }
+    return blPhongLobePdf(m.exponentU, 2.0f * dot(n, wi) * n - wi, wo);
+}
+
 // Probability of choosing the glossy lobe in the mixture.
 BL_INLINE float blGlossyProbability(GpuMaterial m, vec3 albedo) {
     float d = blLuminance(albedo);
@@ -73,14 +96,7 @@ BL_INLINE float blBrdfPdf(GpuMaterial m, vec3 albedo, vec3 n, vec3 wi, vec3 wo) 
     float pg = blGlossyProbability(m, albedo);
     float pdf = (1.0f - pg) * cosO * kInvPi;
     if (pg > 0.0f) {
-        if (blIsAnisotropic(m)) {
-            vec3 t;
-            vec3 b;
-            blOrthonormalBasis(n, t, b);
-            pdf += pg * blAshikhminShirleyPdf(m.exponentU, m.exponentV, n, t, b, wi, wo);
-        } else {
-            pdf += pg * blPhongLobePdf(m.exponentU, 2.0f * dot(n, wi) * n - wi, wo);
-        }
+        pdf += pg * blGlossyLobePdf(m, n, wi, wo);
     }
     return pdf;
 }
@@ -91,14 +107,7 @@ BL_INLINE float blBrdfPdf(GpuMaterial m, vec3 albedo, vec3 n, vec3 wi, vec3 wo) 
 BL_INLINE vec3 blSampleBrdf(GpuMaterial m, vec3 albedo, vec3 n, vec3 wi, vec3 u) {
     float pg = blGlossyProbability(m, albedo);
     if (u.x < pg) {
-        vec2 v = vec2(u.y, u.z);
-        if (blIsAnisotropic(m)) {
-            vec3 t;
-            vec3 b;
-            blOrthonormalBasis(n, t, b);
-            return blSampleAshikhminShirley(m.exponentU, m.exponentV, n, t, b, wi, v);
-        }
-        return blSamplePhongLobe(m.exponentU, 2.0f * dot(n, wi) * n - wi, v);
+        return blSampleGlossyLobe(m, n, wi, vec2(u.y, u.z));
     }
     return blToWorld(blSampleCosineHemisphere(vec2(u.y, u.z)), n);
 }

@@ -22,8 +22,11 @@ struct SkylightPush {
     uint visibility;       // kSkylightVisibilityBundle or kSkylightVisibilityDepthMap
     uvec2 irradianceAddress; // IrradianceTable entries (vec4), when controlVariate != 0
     uint controlVariate;   // 1: add lambert E(n) and subtract the unoccluded lambert sample
+    uint glossyControl;    // 1: add a lobe-sampled unoccluded glossy sample, subtract the bundle's
+    uint seed;             // the run's seed and this direction's index: the lobe samples' stream
+    uint iteration;
 };
-BL_STATIC_ASSERT(sizeof(SkylightPush) == 92, "SkylightPush layout");
+BL_STATIC_ASSERT(sizeof(SkylightPush) == 104, "SkylightPush layout");
 
 // Bundle: omega and -omega for every point (pdf p_r). Depth map (a directional shadow map): omega
 // only, for the points on its side (pdf q on the sphere); the others wait for another direction.

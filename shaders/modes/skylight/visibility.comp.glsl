@@ -13,11 +13,21 @@
 //   (albedo / pi) E(n) + [V L_e f (n.d) - L_e (albedo / pi) (n.d)] / p(d).
 // Same mean (up to the table's error); a diffuse point no occluder hides adds exactly
 // (albedo / pi) E(n) every iteration, so bundles only estimate what occluders remove.
+//
+// Glossy control variate (glossyControl != 0): the same for the glossy lobe, whose unoccluded
+// integral G = int L_e(l) f_g(l, w_o) (n.l) dl has no table but an unbiased estimate of low variance
+// from one direction l drawn from the lobe itself (density p_g), environment looked up, no visibility:
+//   L_e(l) f_g (n.l) / p_g(l) + [V L_e f_g (n.d) - L_e f_g (n.d)] / p(d).
+// A sharp lobe is met by the lobe sample every iteration, not once in e + 1 bundle directions; the
+// bundles carry only the lobe light occluders remove (-(1 - V) L_e f_g (n.d) / p(d)). Both terms read
+// the same environment (premultiplied map, bilinear, as EnvironmentLight::radiance on the host).
 #include "bundle/Traversal.glsl"
 #include "modes/skylight/SkylightShared.h"
 #define BL_ACCUM_LAYERS kSkylightAccumLayers
 #include "gpu/CameraSet.glsl"
 #include "gpu/BundleEnvironmentLight.glsl"
+#include "shared/BrdfSampling.h"
+#include "shared/Random.h"
 
 layout(local_size_x = kSkylightGroupSize, local_size_y = kSkylightGroupSize) in;
 
@@ -90,6 +100,21 @@ void main() {
             layers[kPathDirect] -= s.radiance * lambert * (s.cosine / s.pdf);
         }
         layers[kPathDirect] += lambert * blSkylightIrradiance(n);
+    }
+    GpuMaterial material = materials[uint(normalMaterial.w)];
+    if (push.glossyControl != 0u && blHasGlossyLobe(material)) {
+        vec3 wo = normalize(camera.position - position);
+        if (s.usable) {
+            layers[kPathDirect] -= s.radiance * blGlossyBrdf(material, n, s.direction, wo) * (s.cosine / s.pdf);
+        }
+        RandomStream random = blRandomStream(push.seed, uint(pixel.y) * push.width + uint(pixel.x), push.iteration);
+        vec3 l = blSampleGlossyLobe(material, n, wo, blRandom2(random));
+        float pdf = blGlossyLobePdf(material, n, wo, l);
+        float cosL = dot(n, l);
+        if (cosL > 0.0 && pdf > 0.0 && push.environmentPresent != 0u) {
+            vec3 radiance = textureLod(environment, blEnvDirectionToUv(l, push.environmentRotation), 0.0).rgb;
+            layers[kPathDirect] += radiance * blGlossyBrdf(material, n, l, wo) * (cosL / pdf);
+        }
     }
     // Each point lies in exactly one tile: it adds its emission and its sample there.
     layers[kPathEmitted] = imageLoad(gbuffer[kGBufferEmission], pixel).rgb;
