@@ -171,8 +171,9 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     options.initialNodes = std::uint64_t(mOptions.poolNodesPerPixel) * options.slotPixels;
     options.memoryCapBytes = mOptions.memoryCapBytes;
     g->exchange.pool = std::make_unique<BundlePool>(*ctx, *g->scene, options);
-    // Build, sort, exchange, update, and per view sample G-buffer, view raster, shade.
-    constexpr std::uint32_t kScopes = 24;
+    // Per direction: first shot, exchange, glossy passes, update, the next bundle's build and sort;
+    // per resolve submission kViewSamplesPerSubmission x (G-buffer, view raster, highlight, shade).
+    constexpr std::uint32_t kScopes = 48;
     g->timer = vk::GpuTimer(*ctx, kScopes);
 
     const std::size_t texels = g->link.texelCount;

@@ -215,6 +215,8 @@ private:
     shader::AtlasDirectPush directPush() const;
     void recordGather(VkCommandBuffer cmd, double weight);
     void recordHighlight(VkCommandBuffer cmd);
+    // View samples recorded into one submission by resolve() (each takes four timer scopes).
+    static constexpr std::uint32_t kViewSamplesPerSubmission = 8;
     // first_shot: the emitter points' pass and pipeline (set-up), and one iteration's shot: the
     // points' cubes and their light into the direct atlas and the senders' constant part
     // (AtlasFirstShot.cpp).

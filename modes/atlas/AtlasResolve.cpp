@@ -7,6 +7,7 @@
 
 #include <modes/atlas/AtlasShared.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <utility>
 
@@ -42,20 +43,28 @@ ImageSet AtlasMode::resolve() {
         push.gatheredIndirect = g.glossy.gather ? addressOf(*mContext, g.glossy.gatheredIndirect) : glm::uvec2(0u);
         push.indirectScale = mIndirectWeight > 0.0 ? float(1.0 / mIndirectWeight) : 0.0f;
     }
-    for (std::uint32_t k = 0; k < samples; ++k) {
-        const gpu::CameraSample sample = g.view.camera->sample(k, samples > 1, mTime, mSeed);
-        push.samplePosition = sample.samplePosition;
+    // Several view samples per submission (the camera's uniform is written in the command stream,
+    // RecordedUniform.h; the rest is push constants): on an H200 a 64^2 resolve of 16 samples, one
+    // submit and wait each, took 50 ms; at 640x360 the same 16 samples are 17 ms of GPU work.
+    for (std::uint32_t first = 0; first < samples; first += kViewSamplesPerSubmission) {
+        const std::uint32_t last = std::min(samples, first + kViewSamplesPerSubmission);
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
-            g.view.camera->record(cmd, sample, &g.timer);
-            g.view.lookup->record(cmd, sample, &g.timer);
-            if (g.glossy.highlightPass) {
-                recordHighlight(cmd);
+            for (std::uint32_t k = first; k < last; ++k) {
+                const gpu::CameraSample sample = g.view.camera->sample(k, samples > 1, mTime, mSeed);
+                push.samplePosition = sample.samplePosition;
+                g.view.camera->record(cmd, sample, &g.timer);
+                g.view.lookup->record(cmd, sample, &g.timer);
+                if (g.glossy.highlightPass) {
+                    recordHighlight(cmd);
+                }
+                const VkDescriptorSet sets[] = {g.view.camera->set(), g.view.bound.set()};
+                g.timer.timed(cmd, "shade", [&] {
+                    g.view.shadePass.dispatch(cmd, push, vk::groupCount(width, height, shader::kAtlasViewGroupSize), sets);
+                });
+                // The next sample's G-buffer and lookup overwrite what this shade read.
+                vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
             }
-            const VkDescriptorSet sets[] = {g.view.camera->set(), g.view.bound.set()};
-            g.timer.timed(cmd, "shade", [&] {
-                g.view.shadePass.dispatch(cmd, push, vk::groupCount(width, height, shader::kAtlasViewGroupSize), sets);
-            });
             vk::computeToHost(cmd);
         });
         g.timer.collect();
