@@ -54,4 +54,16 @@ std::uint64_t buildFitting(BundlePool& pool, const FittingBuildRequest& request,
     }
 }
 
+void PrefetchedBuild::check(BundlePool& pool, const PrefetchKey& next, std::uint64_t& nodesLast,
+                            std::uint64_t& rebuilds) {
+    mHeld.reset();
+    const BundlePoolStatus status = pool.status();
+    if (!status.overflowed()) {
+        mHeld = next;
+        nodesLast = status.requested;
+    } else if (pool.grow(status)) {
+        ++rebuilds;
+    }
+}
+
 } // namespace bl

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace bl {
@@ -25,6 +26,30 @@ struct FittingBuildRequest {
 // until the builds fit; returns the nodes they used. Each rebuild adds one to `rebuilds`.
 std::uint64_t buildFitting(BundlePool& pool, const FittingBuildRequest& request, const std::function<void()>& submit,
                            std::uint64_t& rebuilds);
+
+// The next iteration's builds recorded at the end of this iteration's submission, where their
+// frames depend on the iteration's index and seed only (atlas, multibounce): one submission and
+// wait per iteration instead of a build submission and a use submission. After the wait, check()
+// keeps them if they fit; if not it grows the pool, and the next iteration, finding no builds held
+// for it, builds on its own with buildFitting (which refuses what the limits cannot hold).
+struct PrefetchKey {
+    std::uint32_t iteration = 0;
+    std::uint64_t seed = 0;
+    double time = 0.0;
+    bool operator==(const PrefetchKey&) const = default;
+};
+
+class PrefetchedBuild {
+public:
+    // Whether the pool holds the builds of `key` (recorded and checked after an earlier submission).
+    bool holds(const PrefetchKey& key) const { return mHeld && *mHeld == key; }
+    // After the wait of the submission that recorded the builds of `next`: keeps them if they fit
+    // (their nodes into `nodesLast`), else grows the pool (one more in `rebuilds`) and holds nothing.
+    void check(BundlePool& pool, const PrefetchKey& next, std::uint64_t& nodesLast, std::uint64_t& rebuilds);
+
+private:
+    std::optional<PrefetchKey> mHeld;
+};
 
 // The refusal's text for builds that asked for `requested` nodes of a pool that holds at most
 // `maxNodes` of `bytesPerNode` bytes (exposed for its test).

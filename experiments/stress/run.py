@@ -167,7 +167,8 @@ def write_report(args, results, known, elapsed, renderer):
            "twin at seeds %s (%s; %s), %d x %d pixels; per mode: "
            % (args.subset, datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC"), git_revision(),
               renderer.count, renderer.seconds, elapsed, seeds(cases.SEEDS),
-              "; ".join("%s %s" % (m, seeds(x)) for m, x in cases.MODE_SEEDS.items()),
+              "; ".join(["%s %s" % (m, seeds(x)) for m, x in cases.MODE_SEEDS.items()] +
+                        ["%s against the %s %s" % (m, k, seeds(x)) for (m, k), x in cases.KIND_SEEDS.items()]),
               "; ".join("%s %s" % (c, seeds(x)) for c, x in cases.CASE_SEEDS.items()), cases.SIZE, cases.SIZE) +
            "; ".join("%s %d iterations%s" % (m, cases.SETTINGS[m][0], "".join(" " + s for s in cases.SETTINGS[m][1]))
                      for m in modes) + "; the reference as truth at %d spp." % cases.REFERENCE_SPP, "",

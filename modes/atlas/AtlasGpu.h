@@ -7,6 +7,7 @@
 #include "atlas/AtlasLink.h"
 #include "bundle/BundlePool.h"
 #include "bundle/DirectionSampler.h"
+#include "bundle/FittingBuild.h"
 #include "gpu/CameraPass.h"
 #include "gpu/EmitterPointPass.h"
 #include "gpu/ShadowCubePass.h"
@@ -60,14 +61,7 @@ struct AtlasExchangeState {
     vk::ComputePass<shader::AtlasUpdatePush> updatePass;
     // One submission and wait per direction: its exchange and update, then the next direction's
     // bundle (its frame is known ahead: direction and jitter depend on the index and seed only).
-    // `prebuilt` says which direction the pool holds; a build that overflowed leaves it empty and
-    // the next direction builds on its own after the pool grew.
-    struct Prebuilt {
-        std::uint32_t iteration = 0;
-        std::uint64_t seed = 0;
-        double time = 0.0;
-    };
-    std::optional<Prebuilt> prebuilt;
+    PrefetchedBuild prefetched;
     // Host wall clock beside the GPU timestamps (the bench's ms per direction include host
     // submission and waits): a bundle built on its own, and each direction's submission.
     PassTime wallBuild{"build + sort (wall)"}, wallExchange{"direction (wall)"};

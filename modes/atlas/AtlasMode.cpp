@@ -285,8 +285,7 @@ void AtlasMode::recordBundle(VkCommandBuffer cmd, const shader::BundleFrame& fra
 // Grows the pool and builds again when the bundle did not fit, and refuses what the limits cannot hold.
 void AtlasMode::ensureBundle(const IterationInfo& info, const shader::BundleFrame& frame) {
     Gpu& g = *mGpu;
-    const std::optional<AtlasExchangeState::Prebuilt>& built = g.exchange.prebuilt;
-    if (built && built->iteration == mIterations && built->seed == info.seed && built->time == info.time) {
+    if (g.exchange.prefetched.holds({mIterations, info.seed, info.time})) {
         return;
     }
     g.exchange.nodesLast = buildFitting(*g.exchange.pool, {"atlas", 1, frame.width}, [&] {
@@ -459,14 +458,8 @@ void AtlasMode::iterate(const IterationInfo& info) {
     wall.reset();
     // Whether the next direction's bundle fit: if not, the pool grows now and that direction
     // builds on its own (ensureBundle; where the pool cannot grow, that build says why).
-    const BundlePoolStatus status = g.exchange.pool->status();
-    g.exchange.prebuilt.reset();
-    if (!status.overflowed()) {
-        g.exchange.prebuilt = AtlasExchangeState::Prebuilt{mIterations + 1, info.seed, info.time};
-        g.exchange.nodesLast = status.requested;
-    } else if (g.exchange.pool->grow(status)) {
-        ++g.exchange.rebuilds;
-    }
+    g.exchange.prefetched.check(*g.exchange.pool, {mIterations + 1, info.seed, info.time}, g.exchange.nodesLast,
+                                g.exchange.rebuilds);
     mTotalWeight += weight;
     if (indirect) {
         mIndirectWeight += weightIndirect;

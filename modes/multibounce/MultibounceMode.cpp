@@ -98,6 +98,7 @@ struct MultibounceBundles {
     Bounds bounds;
     std::uint64_t nodesLast = 0; // nodes the last iteration's K bundles held
     std::uint64_t rebuilds = 0;  // iterations redone after the pool grew
+    PrefetchedBuild prefetched;  // the next iteration's bundles, built with this one's paths
 };
 
 struct MultibounceMode::Gpu {
@@ -206,8 +207,9 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
         throw Error("multibounce: " + std::to_string(slots) + " bundles of " + std::to_string(resolution) + "^2: " +
                     e.what() + " (lower bundle_count or bundle_resolution, or raise memory_cap_mib where the device allows)");
     }
-    // A scope per build and per sort, plus the camera passes.
-    constexpr std::uint32_t kOtherScopes = 8;
+    // A scope per build and per sort (the next iteration's, recorded with this one's passes), plus
+    // the points, shadow, emitter-point, camera and path passes.
+    constexpr std::uint32_t kOtherScopes = 12;
     g->timer = vk::GpuTimer(*ctx, 2 * slots + kOtherScopes);
 
     if (mPlan.runs(kPassSurfacePoints)) {
@@ -244,32 +246,41 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     mGpu = std::move(g);
 }
 
-// Builds and sorts the K bundles of this iteration into the pool; grows the pool and builds
-// again when they did not fit, and refuses what the limits cannot hold.
-void MultibounceMode::buildBundles(const IterationInfo& info) {
+// Records the reset, the points (imperfect bundles), the builds and the sorts of iteration
+// `iteration`'s K bundles: their directions and points depend on the iteration and seed only.
+void MultibounceMode::recordBundles(VkCommandBuffer cmd, std::uint32_t iteration, const IterationInfo& info) {
     Gpu& g = *mGpu;
     const std::uint32_t slots = g.bundles.pool->slots();
     const std::uint32_t resolution = mOptions.bundleResolution;
-    std::vector<shader::BundleFrame> frames(slots);
-    for (std::uint32_t k = 0; k < slots; ++k) {
-        const BundleDirection dir = g.bundles.directions->sample(mIterations * slots + k);
-        frames[k] = bundleFrameForSphere(dir.omega, dir.rotation, g.bundles.bounds.center(), g.bundles.bounds.radius(), resolution);
+    g.bundles.pool->recordReset(cmd);
+    if (g.bundles.points) {
+        g.bundles.points->record(cmd, static_cast<std::uint32_t>(info.seed), iteration, info.time, &g.timer);
     }
-    g.bundles.nodesLast = buildFitting(*g.bundles.pool, {"multibounce", slots, resolution}, [&] {
+    for (std::uint32_t k = 0; k < slots; ++k) {
+        const BundleDirection dir = g.bundles.directions->sample(iteration * slots + k);
+        const shader::BundleFrame frame =
+            bundleFrameForSphere(dir.omega, dir.rotation, g.bundles.bounds.center(), g.bundles.bounds.radius(), resolution);
+        const BundleGeometry geometry = g.bundles.points ? BundleGeometry::pointSplats(g.bundles.points->splats(k), g.bundles.points->perDirection())
+                                                 : BundleGeometry::triangles(info.time);
+        g.bundles.pool->recordBuild(cmd, k, frame, geometry, &g.timer);
+    }
+    for (std::uint32_t k = 0; k < slots; ++k) {
+        g.bundles.pool->recordSort(cmd, k, &g.timer);
+    }
+}
+
+// Makes this iteration's K bundles: built at the end of the previous iteration's submission, or
+// here in a submission of their own (the first iteration, after an overflow); grows the pool and
+// builds again when they did not fit, and refuses what the limits cannot hold.
+void MultibounceMode::buildBundles(const IterationInfo& info) {
+    Gpu& g = *mGpu;
+    if (g.bundles.prefetched.holds({mIterations, info.seed, info.time})) {
+        return;
+    }
+    g.bundles.nodesLast = buildFitting(*g.bundles.pool, {"multibounce", g.bundles.pool->slots(), mOptions.bundleResolution}, [&] {
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
-            g.bundles.pool->recordReset(cmd);
-            if (g.bundles.points) {
-                g.bundles.points->record(cmd, static_cast<std::uint32_t>(info.seed), mIterations, info.time, &g.timer);
-            }
-            for (std::uint32_t k = 0; k < slots; ++k) {
-                const BundleGeometry geometry = g.bundles.points ? BundleGeometry::pointSplats(g.bundles.points->splats(k), g.bundles.points->perDirection())
-                                                         : BundleGeometry::triangles(info.time);
-                g.bundles.pool->recordBuild(cmd, k, frames[k], geometry, &g.timer);
-            }
-            for (std::uint32_t k = 0; k < slots; ++k) {
-                g.bundles.pool->recordSort(cmd, k, &g.timer);
-            }
+            recordBundles(cmd, mIterations, info);
         });
         g.timer.collect();
     }, g.bundles.rebuilds);
@@ -321,8 +332,15 @@ void MultibounceMode::iterate(const IterationInfo& info) {
             g.paths.dispatch(cmd, push, vk::groupCount(width, height, shader::kMultibounceGroupSize), sets);
         });
         vk::computeToHost(cmd);
+        // The next iteration's bundles, once the paths have read these (and their splats).
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                              VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        recordBundles(cmd, mIterations + 1, info);
     });
     g.timer.collect();
+    g.bundles.prefetched.check(*g.bundles.pool, {mIterations + 1, info.seed, info.time}, g.bundles.nodesLast,
+                               g.bundles.rebuilds);
     ++mIterations;
 }
 

@@ -70,6 +70,8 @@
 #include "modes/Mode.h"
 #include "modes/multibounce/MultibounceOptions.h"
 
+#include <vulkan/vulkan.h>
+
 #include <memory>
 #include <optional>
 
@@ -118,6 +120,7 @@ private:
     bool distinctBundles() const; // a path draws its bundles without replacement
     struct Gpu;
     void buildBundles(const IterationInfo& info);
+    void recordBundles(VkCommandBuffer cmd, std::uint32_t iteration, const IterationInfo& info);
 
     Settings mSettings;
     MultibounceOptions mOptions; // mSettings, typed, read once
