@@ -20,7 +20,7 @@
 #   (their budget shares stay: a step still ends where the full run's would).
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-out=${1:?usage: device-bench.sh OUTDIR [--quick] [--budget SECONDS] [--device D]}
+out=${1:?usage: device-bench.sh OUTDIR [--quick] [--budget SECONDS] [--device D] [--only STEP]...}
 shift
 quick=0 budget=480 device=() only=()
 while (($#)); do
@@ -29,6 +29,7 @@ while (($#)); do
         --budget) budget=$2; shift ;;
         --device) device=(--device "$2"); shift ;;
         --only)
+            (($# >= 2)) || { echo "device-bench: --only needs a step (passes, bundles, equal-time, texels)" >&2; exit 2; }
             case $2 in passes|bundles|equal-time|texels) only+=("$2") ;;
                 *) echo "device-bench: --only $2: not a step (passes, bundles, equal-time, texels)" >&2; exit 2 ;; esac
             shift ;;
@@ -45,13 +46,17 @@ fi
 [[ -x "$bl" ]] || { echo "device-bench: no bundlelab binary at $bl" >&2; exit 1; }
 python=python3
 command -v /usr/bin/python3 >/dev/null && python=/usr/bin/python3
+wanted() { ((${#only[@]} == 0)) || [[ " ${only[*]} " == *" $1 "* ]]; }
+# A reused OUTDIR: the steps not run this time must not show an earlier run's figures.
+wanted passes || rm -rf "$out/passes"
+wanted bundles || rm -rf "$out/bundles"
+wanted equal-time || rm -rf "$out/equal-time" "$out/equal-time.log" "$out/equal-time.toml"
 mkdir -p "$out"/passes "$out"/bundles "$out"/texels
 start=$(date +%s)
 # Each step owns a share of the budget (passes to 40 %, bundles to 58 %, equal time to 86 %, the atlas in
 # texel space the rest), so a
 # slow device still reaches every step; a render that would start with under 20 s left is skipped.
 step_end=$start
-wanted() { ((${#only[@]} == 0)) || [[ " ${only[*]} " == *" $1 "* ]]; }
 step() { step_end=$((start + budget * $1 / 100)); }
 remaining() { echo $((step_end - $(date +%s))); }
 log() { echo "[$(($(date +%s) - start)) s] $*" | tee -a "$out/log.txt"; }

@@ -202,11 +202,11 @@ void BundlePool::checkSlot(std::uint32_t slot, const shader::BundleFrame& frame)
 void BundlePool::recordReset(VkCommandBuffer cmd) const {
     const shader::BundleCounters counters{0, static_cast<std::uint32_t>(mCapacity), 0, 0};
     vkCmdUpdateBuffer(cmd, mCounters.get(), 0, sizeof(counters), &counters);
-    vkCmdUpdateBuffer(cmd, mStatusCopy.get(), 0, sizeof(counters), &counters);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    recordStatusCopy(cmd); // a reset with no build after it reads as empty
 }
 
 void BundlePool::recordBuild(VkCommandBuffer cmd, std::uint32_t slot, const shader::BundleFrame& frame,

@@ -99,7 +99,8 @@ void ComputeBundleRasterizer::record(VkCommandBuffer cmd, const BundlePool& pool
     if (timer) timer->stop(cmd, scope);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
-                          VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_HOST_BIT);    pool.recordStatusCopy(cmd);
+                          VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_HOST_BIT);
+    pool.recordStatusCopy(cmd);
 }
 
 } // namespace bl

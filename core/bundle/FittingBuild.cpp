@@ -54,16 +54,25 @@ std::uint64_t buildFitting(BundlePool& pool, const FittingBuildRequest& request,
     }
 }
 
-void PrefetchedBuild::check(BundlePool& pool, const PrefetchKey& next, std::uint64_t& nodesLast,
-                            std::uint64_t& rebuilds) {
-    mHeld.reset();
-    const BundlePoolStatus status = pool.status();
-    if (!status.overflowed()) {
-        mHeld = next;
-        nodesLast = status.requested;
-    } else if (pool.grow(status)) {
+void PrefetchedBuild::check(const BundlePool& pool, const PrefetchKey& next) {
+    mKey = next;
+    mStatus = pool.status();
+}
+
+bool PrefetchedBuild::take(BundlePool& pool, const PrefetchKey& key, std::uint64_t& nodesLast, std::uint64_t& rebuilds) {
+    if (!mKey || !(*mKey == key)) {
+        return false;
+    }
+    mKey.reset();
+    if (!mStatus.overflowed()) {
+        nodesLast = mStatus.requested;
+        return true;
+    }
+    // Where the pool cannot grow, buildFitting's own overflow says why.
+    if (pool.grow(mStatus)) {
         ++rebuilds;
     }
+    return false;
 }
 
 } // namespace bl

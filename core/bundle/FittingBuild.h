@@ -30,8 +30,9 @@ std::uint64_t buildFitting(BundlePool& pool, const FittingBuildRequest& request,
 // The next iteration's builds recorded at the end of this iteration's submission, where their
 // frames depend on the iteration's index and seed only (atlas, multibounce): one submission and
 // wait per iteration instead of a build submission and a use submission. After the wait, check()
-// keeps them if they fit; if not it grows the pool, and the next iteration, finding no builds held
-// for it, builds on its own with buildFitting (which refuses what the limits cannot hold).
+// notes whether they fit. The next iteration take()s them: held if they fit; if they overflowed,
+// the pool grows then (a rebuild, counted where it is used: a last, unused prefetch costs nothing)
+// and that iteration builds on its own with buildFitting (which refuses what the limits cannot hold).
 struct PrefetchKey {
     std::uint32_t iteration = 0;
     std::uint64_t seed = 0;
@@ -41,14 +42,16 @@ struct PrefetchKey {
 
 class PrefetchedBuild {
 public:
-    // Whether the pool holds the builds of `key` (recorded and checked after an earlier submission).
-    bool holds(const PrefetchKey& key) const { return mHeld && *mHeld == key; }
-    // After the wait of the submission that recorded the builds of `next`: keeps them if they fit
-    // (their nodes into `nodesLast`), else grows the pool (one more in `rebuilds`) and holds nothing.
-    void check(BundlePool& pool, const PrefetchKey& next, std::uint64_t& nodesLast, std::uint64_t& rebuilds);
+    // After the wait of the submission that recorded the builds of `next`.
+    void check(const BundlePool& pool, const PrefetchKey& next);
+    // Before iteration `key` uses its bundles: true if the pool holds them (their nodes into
+    // `nodesLast`); false if it must build them now, after growing the pool (one more in
+    // `rebuilds`) where they were prefetched and overflowed.
+    bool take(BundlePool& pool, const PrefetchKey& key, std::uint64_t& nodesLast, std::uint64_t& rebuilds);
 
 private:
-    std::optional<PrefetchKey> mHeld;
+    std::optional<PrefetchKey> mKey;
+    BundlePoolStatus mStatus;
 };
 
 // The refusal's text for builds that asked for `requested` nodes of a pool that holds at most

@@ -131,7 +131,7 @@ def against_reference(case_runs, ref_runs):
     # The mean's degrees of freedom by Welch-Satterthwaite (the two sides may have different seed
     # counts and spreads: skylight 8 seeds against the reference's 3, whose error is far smaller);
     # the blocks keep the conservative min(n) - 1.
-    dof = stats.welch_dof(stats.stderr(c) / rc if rc > 0 else 0.0, len(c), stats.stderr(g) / rg, len(g))
+    dof = stats.welch_dof(stats.stderr(c) / rc if rc > 0 else stats.stderr(c) / rg, len(c), stats.stderr(g) / rg, len(g))
     return _judge_ratio(ratio, se, dof, floor, blocks, floor * ref_runs[0].image.pixels / BLOCK ** 2,
                         "against the reference (%d and %d seeds)" % (len(c), len(g)),
                         block_dof=min(len(c), len(g)) - 1)

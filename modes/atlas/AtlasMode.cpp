@@ -285,7 +285,8 @@ void AtlasMode::recordBundle(VkCommandBuffer cmd, const shader::BundleFrame& fra
 // Grows the pool and builds again when the bundle did not fit, and refuses what the limits cannot hold.
 void AtlasMode::ensureBundle(const IterationInfo& info, const shader::BundleFrame& frame) {
     Gpu& g = *mGpu;
-    if (g.exchange.prefetched.holds({mIterations, info.seed, info.time})) {
+    if (g.exchange.prefetched.take(*g.exchange.pool, {mIterations, info.seed, info.time}, g.exchange.nodesLast,
+                                   g.exchange.rebuilds)) {
         return;
     }
     g.exchange.nodesLast = buildFitting(*g.exchange.pool, {"atlas", 1, frame.width}, [&] {
@@ -458,8 +459,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
     wall.reset();
     // Whether the next direction's bundle fit: if not, the pool grows now and that direction
     // builds on its own (ensureBundle; where the pool cannot grow, that build says why).
-    g.exchange.prefetched.check(*g.exchange.pool, {mIterations + 1, info.seed, info.time}, g.exchange.nodesLast,
-                                g.exchange.rebuilds);
+    g.exchange.prefetched.check(*g.exchange.pool, {mIterations + 1, info.seed, info.time});
     mTotalWeight += weight;
     if (indirect) {
         mIndirectWeight += weightIndirect;

@@ -274,7 +274,8 @@ void MultibounceMode::recordBundles(VkCommandBuffer cmd, std::uint32_t iteration
 // builds again when they did not fit, and refuses what the limits cannot hold.
 void MultibounceMode::buildBundles(const IterationInfo& info) {
     Gpu& g = *mGpu;
-    if (g.bundles.prefetched.holds({mIterations, info.seed, info.time})) {
+    if (g.bundles.prefetched.take(*g.bundles.pool, {mIterations, info.seed, info.time}, g.bundles.nodesLast,
+                                  g.bundles.rebuilds)) {
         return;
     }
     g.bundles.nodesLast = buildFitting(*g.bundles.pool, {"multibounce", g.bundles.pool->slots(), mOptions.bundleResolution}, [&] {
@@ -339,8 +340,7 @@ void MultibounceMode::iterate(const IterationInfo& info) {
         recordBundles(cmd, mIterations + 1, info);
     });
     g.timer.collect();
-    g.bundles.prefetched.check(*g.bundles.pool, {mIterations + 1, info.seed, info.time}, g.bundles.nodesLast,
-                               g.bundles.rebuilds);
+    g.bundles.prefetched.check(*g.bundles.pool, {mIterations + 1, info.seed, info.time});
     ++mIterations;
 }
 
