@@ -63,7 +63,21 @@ void BundleBuilder::ensurePool(std::uint32_t pixels) {
     mPool = std::make_unique<BundlePool>(*mContext, *mScene, options);
 }
 
-BundleBuilder::Attempt BundleBuilder::buildOnce(const shader::BundleFrame& frame, double time, bool countOnly) {
+BuiltBundle BundleBuilder::builtFor(const shader::BundleFrame& frame, std::uint64_t fragments) const {
+    const shader::BundlePoolView view = mPool->view();
+    auto join = [](glm::uvec2 v) { return VkDeviceAddress(v.x) | VkDeviceAddress(v.y) << 32; };
+    BuiltBundle built;
+    built.frame = frame;
+    built.heads = join(view.heads);
+    built.nodes = join(view.nodes);
+    built.payload = join(view.payload);
+    built.counters = join(view.counters);
+    built.fragments = fragments;
+    return built;
+}
+
+BundleBuilder::Attempt BundleBuilder::buildOnce(const shader::BundleFrame& frame, double time, bool countOnly,
+                                                const BundleRecorder& recordWithBuild) {
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         mTimer.begin(cmd);
         mPool->recordReset(cmd);
@@ -73,6 +87,9 @@ BundleBuilder::Attempt BundleBuilder::buildOnce(const shader::BundleFrame& frame
             mCompute->record(cmd, *mPool, 0, frame, time, &mTimer);
         } else {
             mPool->recordBuild(cmd, 0, frame, BundleGeometry::triangles(time), &mTimer);
+        }
+        if (recordWithBuild && !countOnly) {
+            recordWithBuild(cmd, builtFor(frame, 0)); // the builds end with a barrier to every later stage
         }
     });
     mTimer.collect();
@@ -99,17 +116,18 @@ void BundleBuilder::readStatistics(BundleStats& stats) {
 }
 
 void BundleBuilder::buildTiles(const shader::BundleFrame& frame, double time, std::uint32_t depth, BundleStats& stats,
-                               const std::function<void(const BuiltBundle&)>& consume) {
+                               const std::function<void(const BuiltBundle&)>& consume,
+                               const BundleRecorder& recordWithBuild) {
     const std::uint32_t pixels = frame.width * frame.height;
     ensurePool(pixels);
-    Attempt a = buildOnce(frame, time, false);
+    Attempt a = buildOnce(frame, time, false, recordWithBuild);
     stats.buildMs += a.ms;
     if (a.requested > mPool->capacity() && mPool->grow({a.requested, mPool->capacity()})) {
         // Grown to what this build needs (within the limits): build again.
         ++stats.rebuilds;
         log::debug("bundle: " + std::to_string(a.requested) + " nodes needed: pool grown to " +
                    std::to_string(mPool->capacity()) + ", rebuilding");
-        a = buildOnce(frame, time, false);
+        a = buildOnce(frame, time, false, recordWithBuild);
         stats.buildMs += a.ms;
     }
     if (a.requested > mPool->capacity()) {
@@ -128,7 +146,7 @@ void BundleBuilder::buildTiles(const shader::BundleFrame& frame, double time, st
             for (std::uint32_t x = 0; x < frame.width; x += tw) {
                 if (x || y) ++stats.tiles;
                 buildTiles(bundleTile(frame, x, y, std::min(tw, frame.width - x), std::min(th, frame.height - y)),
-                           time, depth + 1, stats, consume);
+                           time, depth + 1, stats, consume, recordWithBuild);
             }
         }
         return;
@@ -137,21 +155,14 @@ void BundleBuilder::buildTiles(const shader::BundleFrame& frame, double time, st
     if (mOptions.listStatistics) {
         readStatistics(stats);
     }
-    const shader::BundlePoolView view = mPool->view();
-    auto join = [](glm::uvec2 v) { return VkDeviceAddress(v.x) | VkDeviceAddress(v.y) << 32; };
-    BuiltBundle built;
-    built.frame = frame;
-    built.heads = join(view.heads);
-    built.nodes = join(view.nodes);
-    built.payload = join(view.payload);
-    built.fragments = a.requested;
-    consume(built);
+    consume(builtFor(frame, a.requested));
 }
 
 BundleStats BundleBuilder::build(const shader::BundleFrame& frame, double time,
-                                 const std::function<void(const BuiltBundle&)>& consume) {
+                                 const std::function<void(const BuiltBundle&)>& consume,
+                                 const BundleRecorder& recordWithBuild) {
     BundleStats stats;
-    buildTiles(frame, time, 0, stats, consume);
+    buildTiles(frame, time, 0, stats, consume, recordWithBuild);
     return stats;
 }
 

@@ -41,8 +41,14 @@ struct BuiltBundle {
     VkDeviceAddress heads = 0;
     VkDeviceAddress nodes = 0;
     VkDeviceAddress payload = 0;
-    std::uint64_t fragments = 0;
+    VkDeviceAddress counters = 0; // the allocator's BundleCounters: blBundlePoolOverflowed
+    std::uint64_t fragments = 0;  // 0 while recorded with the build (recordWithBuild)
 };
+
+// Work recorded into the build's own submission, after the build (one submit and wait for both).
+// It runs for every attempt, an overflowed one too, so it must test blBundlePoolOverflowed on the
+// device and then do nothing: the builder grows the pool or tiles the frame and records it again.
+using BundleRecorder = std::function<void(VkCommandBuffer, const BuiltBundle&)>;
 
 struct BundleStats {
     std::uint64_t fragments = 0;
@@ -62,8 +68,11 @@ public:
     // Builds the bundle for `frame` (scene at `time`) and hands each completed part to `consume`
     // (the whole frame, or its tiles in turn). Throws bl::Error if one pixel alone needs more than
     // the memory cap.
+    // `recordWithBuild`, where given, is recorded after each build in its submission (above);
+    // `consume` still follows each completed part on the host.
     BundleStats build(const shader::BundleFrame& frame, double time,
-                      const std::function<void(const BuiltBundle&)>& consume);
+                      const std::function<void(const BuiltBundle&)>& consume,
+                      const BundleRecorder& recordWithBuild = {});
 
     // The benchmark floor: rasterize the same triangles with a fragment shader that only counts.
     // Returns the fragment count; GPU milliseconds in *ms.
@@ -82,11 +91,13 @@ private:
         std::uint64_t requested;
         double ms;
     };
-    Attempt buildOnce(const shader::BundleFrame& frame, double time, bool countOnly);
+    Attempt buildOnce(const shader::BundleFrame& frame, double time, bool countOnly,
+                      const BundleRecorder& recordWithBuild = {});
+    BuiltBundle builtFor(const shader::BundleFrame& frame, std::uint64_t fragments) const;
     void ensurePool(std::uint32_t pixels);
     void readStatistics(BundleStats& stats);
     void buildTiles(const shader::BundleFrame& frame, double time, std::uint32_t depth, BundleStats& stats,
-                    const std::function<void(const BuiltBundle&)>& consume);
+                    const std::function<void(const BuiltBundle&)>& consume, const BundleRecorder& recordWithBuild);
 
     const vk::Context* mContext;
     const gpu::GpuScene* mScene;

@@ -171,8 +171,15 @@ void SkylightMode::iterate(const IterationInfo& info) {
     // A new jittered G-buffer every gbuffer_reuse directions, and whenever the scene's time moved.
     const std::uint32_t reuse = mOptions.gbufferReuse;
     const bool freshGBuffer = !g.gbufferSample || mIterations % reuse == 0 || g.gbufferSample->time != info.time;
+    // The G-buffer in a submission of its own only where the host needs it before the bundle
+    // (fit = visible reads its points) or a depth map follows; else it is recorded with the bundle's
+    // build and visibility pass (one submit and wait per direction; a frame split into tiles renders
+    // it again with each tile).
+    const bool gbufferWithBundle = freshGBuffer && !mOptions.fitVisible && !g.depthMap;
     if (freshGBuffer) {
         g.gbufferSample = g.camera->sample(mIterations / reuse, true, info.time, info.seed);
+    }
+    if (freshGBuffer && !gbufferWithBundle) {
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
             g.camera->record(cmd, *g.gbufferSample, &g.timer);
@@ -240,18 +247,26 @@ void SkylightMode::iterate(const IterationInfo& info) {
     }
     push.visibility = shader::kSkylightVisibilityBundle;
     bool first = true;
-    g.lastStats = g.builder->build(frame, info.time, [&](const BuiltBundle& built) {
-        std::memcpy(g.frame.data(), &built.frame, sizeof(built.frame));
-        push.headAddress = split(built.heads);
-        push.nodeAddress = split(built.nodes);
-        push.addBase = first ? 1u : 0u;
-        first = false;
-        mContext->submitAndWait([&](VkCommandBuffer cmd) {
+    // Each part of the bundle (the frame, or its tiles) is recorded with its build: the frame's
+    // uniform is written here, while recording, as each part is its own submission.
+    g.lastStats = g.builder->build(
+        frame, info.time,
+        [&](const BuiltBundle&) {
+            g.timer.collect(); // the part's passes, after its submission
+            first = false;
+        },
+        [&](VkCommandBuffer cmd, const BuiltBundle& built) {
+            std::memcpy(g.frame.data(), &built.frame, sizeof(built.frame));
+            push.headAddress = split(built.heads);
+            push.nodeAddress = split(built.nodes);
+            push.counterAddress = split(built.counters);
+            push.addBase = first ? 1u : 0u;
             g.timer.begin(cmd);
+            if (gbufferWithBundle) {
+                g.camera->record(cmd, *g.gbufferSample, &g.timer);
+            }
             dispatchVisibility(cmd);
         });
-        g.timer.collect();
-    });
     if (g.builds.empty()) {
         g.builds.push_back({"bundle build", 0.0, 0});
     }

@@ -66,6 +66,12 @@ void main() {
     if (pixel.x >= int(push.width) || pixel.y >= int(push.height)) {
         return;
     }
+    // Recorded in the build's own submission (BundleBuilder): an overflowed build is built again
+    // (grown or tiled) and this pass recorded again, so this one adds nothing.
+    if (push.visibility == kSkylightVisibilityBundle &&
+        blBundlePoolOverflowed(BundleCounterBlock(push.counterAddress))) {
+        return;
+    }
     if (!blCameraHitSurface(pixel)) {
         if (push.addBase != 0u) {
             blAccumulateLayer(pixel, kPathEmitted, blCameraBackground(pixel, push.samplePosition,
