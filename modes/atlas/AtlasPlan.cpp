@@ -60,8 +60,9 @@ std::vector<ParamSpec> AtlasMode::parameters() {
          "refused",
          0, 1 << 20, {}},
         {kPoolNodes, std::int64_t{4}, "nodes",
-         "the bundle pool's first size, per bundle pixel; a direction whose bundle needs more grows it (counted in "
-         "bundle_rebuilds): a deep scene starts larger to skip the first rebuilds",
+         "the bundle pool's first size, per bundle pixel (at most what memory_cap_mib or the device allows); a "
+         "direction whose bundle needs more grows it (counted in bundle_rebuilds): a deep scene starts larger to "
+         "skip the first rebuilds",
          1, 1 << 16, {}},
     };
     return withEmitterPointParameters(std::move(params), "direction",
