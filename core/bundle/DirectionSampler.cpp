@@ -18,6 +18,7 @@ DirectionSequence directionSequenceNamed(std::string_view name) {
 
 namespace {
 constexpr float kUniformSpherePdf = 1.0f / (4.0f * shader::kPi);
+constexpr float kOneBelow = 0x1.fffffep-1f; // the largest float below 1
 }
 
 DirectionSampler::DirectionSampler(DirectionSequence sequence, std::uint32_t seed, std::uint32_t strata,
@@ -64,10 +65,17 @@ BundleDirection DirectionSampler::sample(std::uint32_t index) const {
     glm::vec2 u = unitSquare(index);
     d.rotation = shader::kTwoPi * shader::blHashRandom(mSeed ^ 0x9e3779b9u, index);
     if (mSequence == DirectionSequence::Importance) {
-        // One extra number picks the mixture component; u stays stratified for each component.
-        float pick = shader::blHashRandom(mSeed ^ 0x85ebca6bu, index);
+        // The point's first coordinate picks the mixture component and is stretched back over
+        // [0, 1): each component gets a stratified share of the points. (A hash of its own per
+        // direction handed each component a random subset: i.i.d.-like error,
+        // DirectionSampler.ImportanceDirectionsStayStratified.)
         float pdfIgnored = 0.0f;
-        d.omega = pick < mEnvironmentProbability ? mEnvironment->sample(u, &pdfIgnored) : shader::blSampleUniformSphere(u);
+        const float p = mEnvironmentProbability;
+        if (u.x < p) {
+            d.omega = mEnvironment->sample({std::min(u.x / p, kOneBelow), u.y}, &pdfIgnored);
+        } else {
+            d.omega = shader::blSampleUniformSphere({std::min((u.x - p) / (1.0f - p), kOneBelow), u.y});
+        }
         return d;
     }
     d.omega = shader::blSampleUniformSphere(u);
