@@ -224,7 +224,7 @@ Bracket bracket(const Deficit& deficit, const TexelBias& texel, double other) {
     return {0.5 * (lower + upper), 0.5 * (upper - lower)};
 }
 
-TexelBias texelBias(const Scene& s, const Image& light, double h) {
+TexelBias texelBias(const Scene& s, const Image& light, double h, bool bothSides) {
     // (a) second order.
     const double r = double(s.bounds().radius());
     const double secondOrder = (h / r) * (h / r);
@@ -256,7 +256,8 @@ TexelBias texelBias(const Scene& s, const Image& light, double h) {
         const double u = glm::dot(v, right) / (depth * tx), w = glm::dot(v, up) / (depth * ty);
         if (std::abs(u) > 1.0 || std::abs(w) > 1.0) continue;
         const double d = glm::length(v);
-        const double solidAngle = h * c.length * std::abs(glm::dot(glm::dvec3(c.normal), v / d)) / (d * d);
+        const double cosine = std::abs(glm::dot(glm::dvec3(c.normal), v / d)) + (bothSides ? 1.0 : 0.0);
+        const double solidAngle = h * c.length * cosine / (d * d);
         const int px = std::clamp(int((u + 1.0) * 0.5 * width), 0, width - 1);
         const int py = std::clamp(int((1.0 - w) * 0.5 * height), 0, height - 1);
         double near = 0.0;

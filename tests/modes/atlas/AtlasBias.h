@@ -81,7 +81,11 @@ struct TexelBias {
     double hidden = 0.0;      // (b): at most this share lost
     double secondOrder = 0.0; // (a): either way
 };
-TexelBias texelBias(const Scene& scene, const Image& light, double texelSide);
+// `bothSides`: the strip on the contact edge's own surface loses light too (skylight: a point's
+// visibility is the ray through its bundle pixel's centre, up to h away, which for points within h
+// of a contact may pass under the other surface), bounded with that surface's cosine toward the
+// camera taken as 1.
+TexelBias texelBias(const Scene& scene, const Image& light, double texelSide, bool bothSides = false);
 
 // The furnace (data/analytic/furnace.toml: the cube [-1, 1]^3, every face emitting 1 inward,
 // albedo `albedo`) after interleaved transfer over the given directions, in expectation over what

@@ -32,6 +32,9 @@ constexpr double kShadowTolerance = 0.01;
 constexpr double kEmitterShadowTolerance = 0.01;
 // The largest albedo of the Cornell boxes' materials (the light's 0.78): the transport's norm.
 constexpr double kCornellAlbedo = 0.78;
+// The blocks scenes' (ao-blocks, sky-blocks) largest albedo, the white block's, with the glossy
+// lobe removed.
+constexpr double kBlocksAlbedo = 0.725;
 
 } // namespace
 
@@ -70,19 +73,8 @@ TEST_F(Atlas, RefusesSettingsThatMixPathLengths) {
 // exchange's received light x 1.10: +21.5% (fails).
 TEST_F(Atlas, CornellMatchesReference) {
     Scene s = loadSmall("data/cornell-box/cornell.toml", kStatResolution);
-    constexpr std::uint32_t kDirections = 512;
-    const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=128", "view_samples=16",
-                                            "first_shot=off"};
-    const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
-    const Image reflected = reflectedLight(reference);
-    double side = 0.0;
-    const std::vector<double> means = reflectedMeans(s, kDirections, settings, kSeeds, side);
-    const bias::Deficit deficit = bias::interleavedDeficit(reference, kDirections, kWeighting, kCornellAlbedo, 0);
-    const bias::Bracket b = bias::bracket(deficit, bias::texelBias(s, reflected, side));
-    std::printf("cornell: interleaved deficit %.5f to %.5f: expected %.4f +- %.4f of the reference\n", deficit.least,
-                deficit.most, b.centre, b.halfWidth);
-    expectSeedsAgree(means, b.centre * lumaMean(reflected), b.halfWidth * lumaMean(reflected),
-                     "cornell reflected light");
+    expectReflectedLight(s, 512, {"atlas_resolution=128", "bundle_resolution=128", "view_samples=16", "first_shot=off"},
+                         kSeeds, kCornellAlbedo, 0, "cornell");
 }
 
 // A constant white sky over blocks (data/analytic/ao-blocks.toml): light enters only where a list
@@ -99,18 +91,8 @@ TEST_F(Atlas, CornellMatchesReference) {
 TEST_F(Atlas, EnvironmentAtListEndsMatchesReference) {
     Scene s = loadSmall("data/analytic/ao-blocks.toml", kStatResolution);
     for (Material& m : s.materials) m.specular = glm::vec3(0.0f);
-    constexpr std::uint32_t kDirections = 1024, kSkySeeds = 4;
-    constexpr double kBlocksAlbedo = 0.725;
-    const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=128", "view_samples=16"};
-    const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
-    const Image reflected = reflectedLight(reference);
-    double side = 0.0;
-    const std::vector<double> means = reflectedMeans(s, kDirections, settings, kSkySeeds, side);
-    const bias::Deficit deficit = bias::interleavedDeficit(reference, kDirections, kWeighting, kBlocksAlbedo, 1);
-    const bias::Bracket b = bias::bracket(deficit, bias::texelBias(s, reflected, side));
-    std::printf("sky: interleaved deficit %.5f to %.5f: expected %.4f +- %.4f of the reference\n", deficit.least,
-                deficit.most, b.centre, b.halfWidth);
-    expectSeedsAgree(means, b.centre * lumaMean(reflected), b.halfWidth * lumaMean(reflected), "sky reflected light");
+    expectReflectedLight(s, 1024, {"atlas_resolution=128", "bundle_resolution=128", "view_samples=16"}, 4, kBlocksAlbedo,
+                         1, "sky");
 }
 
 namespace {
@@ -127,6 +109,44 @@ Image sumOf(const ImageSet& set, const std::vector<std::string>& names) {
 
 } // namespace
 
+void Atlas::expectReflectedLight(const Scene& s, std::uint32_t directions, const std::vector<std::string>& settings,
+                                 std::uint32_t seeds, double norm, int fromLights, const std::string& label) {
+    const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
+    const Image reflected = reflectedLight(reference);
+    double side = 0.0;
+    const std::vector<double> means = reflectedMeans(s, directions, settings, seeds, side);
+    const bias::Deficit deficit = bias::interleavedDeficit(reference, directions, kWeighting, norm, fromLights);
+    const bias::Bracket b = bias::bracket(deficit, bias::texelBias(s, reflected, side));
+    std::printf("%s: interleaved deficit %.5f to %.5f: expected %.4f +- %.4f of the reference\n", label.c_str(),
+                deficit.least, deficit.most, b.centre, b.halfWidth);
+    expectSeedsAgree(means, b.centre * lumaMean(reflected), b.halfWidth * lumaMean(reflected), label + " reflected light");
+}
+
+void Atlas::expectDirectAndIndirect(const Scene& s, std::uint32_t directions, const std::vector<std::string>& settings,
+                                    std::uint32_t seeds, double norm, double other, const std::string& label) {
+    const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
+    const Image& referenceDirect = bl::test::layerOf(reference, "direct");
+    const Image referenceIndirect = sumOf(reference, {"indirect1", "indirect2", "rest"});
+    std::vector<double> direct, indirect;
+    double side = 0.0;
+    for (std::uint32_t seed : stats::seeds(seeds)) {
+        const ImageSet out = resolveSeed(s, directions, settings, seed, side);
+        direct.push_back(lumaMean(bl::test::layerOf(out, "direct")));
+        indirect.push_back(lumaMean(bl::test::layerOf(out, "rest")));
+    }
+    const bias::Bracket d = bias::bracket({}, bias::texelBias(s, referenceDirect, side), other);
+    expectSeedsAgree(direct, d.centre * lumaMean(referenceDirect), d.halfWidth * lumaMean(referenceDirect),
+                     label + " direct");
+    const bias::Deficit deficit =
+        bias::interleavedDeficit(reference, directions, kWeighting, norm, 1, {"indirect1", "indirect2", "rest"});
+    const bias::Bracket i = bias::bracket(deficit, bias::texelBias(s, referenceIndirect, side), other);
+    std::printf("%s: transport norm %.3f, interleaved deficit of the indirect light %.5f to %.5f: expected %.4f +- "
+                "%.4f\n",
+                label.c_str(), norm, deficit.least, deficit.most, i.centre, i.halfWidth);
+    expectSeedsAgree(indirect, i.centre * lumaMean(referenceIndirect), i.halfWidth * lumaMean(referenceIndirect),
+                     label + " indirect");
+}
+
 // The Cornell box lit by a point light only ([HHGM10] section 6.5 hybrid): its light reaches the
 // atlas by cube shadow maps averaged over 2x2 points per texel (layer `direct`), the exchange carries
 // it on (layer `rest`). kSeeds seeds at 64 directions, 128^2 atlas and bundles, against the
@@ -140,29 +160,8 @@ Image sumOf(const ImageSet& set, const std::vector<std::string>& names) {
 // exchange's received light x 1.10: indirect +20% (fails).
 TEST_F(Atlas, CornellPointLightMatchesReference) {
     Scene s = loadSmall("data/cornell-box/cornell-point.toml", kStatResolution);
-    constexpr std::uint32_t kDirections = 64;
-    const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=128", "view_samples=4",
-                                            "shadow_resolution=512"};
-    const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
-    const Image& referenceDirect = bl::test::layerOf(reference, "direct");
-    const Image referenceIndirect = sumOf(reference, {"indirect1", "indirect2", "rest"});
-    std::vector<double> direct, indirect;
-    double side = 0.0;
-    for (std::uint32_t seed : stats::seeds(kSeeds)) {
-        const ImageSet out = resolveSeed(s, kDirections, settings, seed, side);
-        direct.push_back(lumaMean(bl::test::layerOf(out, "direct")));
-        indirect.push_back(lumaMean(bl::test::layerOf(out, "rest")));
-    }
-    const bias::Bracket d = bias::bracket({}, bias::texelBias(s, referenceDirect, side), kShadowTolerance);
-    expectSeedsAgree(direct, d.centre * lumaMean(referenceDirect), d.halfWidth * lumaMean(referenceDirect),
-                     "cornell point direct");
-    const bias::Deficit deficit = bias::interleavedDeficit(reference, kDirections, kWeighting, kCornellAlbedo, 1,
-                                                           {"indirect1", "indirect2", "rest"});
-    const bias::Bracket i = bias::bracket(deficit, bias::texelBias(s, referenceIndirect, side), kShadowTolerance);
-    std::printf("cornell point: interleaved deficit of the indirect light %.5f to %.5f: expected %.4f +- %.4f\n",
-                deficit.least, deficit.most, i.centre, i.halfWidth);
-    expectSeedsAgree(indirect, i.centre * lumaMean(referenceIndirect), i.halfWidth * lumaMean(referenceIndirect),
-                     "cornell point indirect");
+    expectDirectAndIndirect(s, 64, {"atlas_resolution=128", "bundle_resolution=128", "view_samples=4", "shadow_resolution=512"},
+                            kSeeds, kCornellAlbedo, kShadowTolerance, "cornell point");
 }
 
 // The area-lit Cornell box by the first shot (first_shot = on): the emitters' direct light by
@@ -176,29 +175,8 @@ TEST_F(Atlas, CornellPointLightMatchesReference) {
 // part accumulated instead of set (the shot sent again every direction): indirect x 41 (fails).
 TEST_F(Atlas, CornellFirstShotMatchesReference) {
     Scene s = loadSmall("data/cornell-box/cornell.toml", kStatResolution);
-    constexpr std::uint32_t kDirections = 64;
-    const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=128", "view_samples=4",
-                                            "first_shot=on"};
-    const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
-    const Image& referenceDirect = bl::test::layerOf(reference, "direct");
-    const Image referenceIndirect = sumOf(reference, {"indirect1", "indirect2", "rest"});
-    std::vector<double> direct, indirect;
-    double side = 0.0;
-    for (std::uint32_t seed : stats::seeds(kSeeds)) {
-        const ImageSet out = resolveSeed(s, kDirections, settings, seed, side);
-        direct.push_back(lumaMean(bl::test::layerOf(out, "direct")));
-        indirect.push_back(lumaMean(bl::test::layerOf(out, "rest")));
-    }
-    const bias::Bracket d = bias::bracket({}, bias::texelBias(s, referenceDirect, side), kEmitterShadowTolerance);
-    expectSeedsAgree(direct, d.centre * lumaMean(referenceDirect), d.halfWidth * lumaMean(referenceDirect),
-                     "cornell first shot direct");
-    const bias::Deficit deficit = bias::interleavedDeficit(reference, kDirections, kWeighting, kCornellAlbedo, 1,
-                                                           {"indirect1", "indirect2", "rest"});
-    const bias::Bracket i = bias::bracket(deficit, bias::texelBias(s, referenceIndirect, side), kEmitterShadowTolerance);
-    std::printf("cornell first shot: interleaved deficit of the indirect light %.5f to %.5f: expected %.4f +- %.4f\n",
-                deficit.least, deficit.most, i.centre, i.halfWidth);
-    expectSeedsAgree(indirect, i.centre * lumaMean(referenceIndirect), i.halfWidth * lumaMean(referenceIndirect),
-                     "cornell first shot indirect");
+    expectDirectAndIndirect(s, 64, {"atlas_resolution=128", "bundle_resolution=128", "view_samples=4", "first_shot=on"},
+                            kSeeds, kCornellAlbedo, kEmitterShadowTolerance, "cornell first shot");
 }
 
 // The first shot is refused where its light would not reach every sender (a fixed pass sender,
@@ -310,34 +288,13 @@ TEST_F(Atlas, CornellDelayedOneBounceChannelIsTheFirstBouncePass) {
 TEST_F(Atlas, GlossyCornellMatchesReference) {
     BL_SKIP_WITHOUT_SCENE_FILES("data/external/cornell-glossy-point.toml");
     Scene s = loadSmall("data/external/cornell-glossy-point.toml", kStatResolution);
-    constexpr std::uint32_t kDirections = 512, kGlossySeeds = 4;
-    const std::vector<std::string> settings{"atlas_resolution=128", "bundle_resolution=128", "view_samples=16"};
     double norm = 0.0;
     for (const Material& m : s.materials) {
         norm = std::max(norm, double(std::max({m.albedo.x, m.albedo.y, m.albedo.z}) +
                                      std::max({m.specular.x, m.specular.y, m.specular.z})));
     }
-    const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
-    const Image& referenceDirect = bl::test::layerOf(reference, "direct");
-    const Image referenceIndirect = sumOf(reference, {"indirect1", "indirect2", "rest"});
-    std::vector<double> direct, indirect;
-    double side = 0.0;
-    for (std::uint32_t seed : stats::seeds(kGlossySeeds)) {
-        const ImageSet out = resolveSeed(s, kDirections, settings, seed, side);
-        direct.push_back(lumaMean(bl::test::layerOf(out, "direct")));
-        indirect.push_back(lumaMean(bl::test::layerOf(out, "rest")));
-    }
-    const bias::Bracket d = bias::bracket({}, bias::texelBias(s, referenceDirect, side), kShadowTolerance);
-    expectSeedsAgree(direct, d.centre * lumaMean(referenceDirect), d.halfWidth * lumaMean(referenceDirect),
-                     "cornell glossy direct");
-    const bias::Deficit deficit = bias::interleavedDeficit(reference, kDirections, kWeighting, norm, 1,
-                                                           {"indirect1", "indirect2", "rest"});
-    const bias::Bracket i = bias::bracket(deficit, bias::texelBias(s, referenceIndirect, side), kShadowTolerance);
-    std::printf("cornell glossy: transport norm %.3f, interleaved deficit of the indirect light %.5f to %.5f: expected "
-                "%.4f +- %.4f\n",
-                norm, deficit.least, deficit.most, i.centre, i.halfWidth);
-    expectSeedsAgree(indirect, i.centre * lumaMean(referenceIndirect), i.halfWidth * lumaMean(referenceIndirect),
-                     "cornell glossy indirect");
+    expectDirectAndIndirect(s, 512, {"atlas_resolution=128", "bundle_resolution=128", "view_samples=16"}, 4, norm,
+                            kShadowTolerance, "cornell glossy");
 }
 
 // An HDR environment map (Bitterli's classroom sky, a sun in it; data/analytic/sky-blocks.toml) over
@@ -357,19 +314,8 @@ TEST_F(Atlas, EnvironmentMapMatchesReference) {
     BL_SKIP_WITHOUT_SCENE_FILES("data/analytic/sky-blocks.toml");
     Scene s = loadSmall("data/analytic/sky-blocks.toml", kStatResolution);
     for (Material& m : s.materials) m.specular = glm::vec3(0.0f);
-    constexpr std::uint32_t kDirections = 4096, kSkySeeds = 4;
-    constexpr double kBlocksAlbedo = 0.725;
-    const std::vector<std::string> settings{"atlas_resolution=64", "bundle_resolution=64", "view_samples=16",
-                                            "directions=importance"};
-    const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
-    const Image reflected = reflectedLight(reference);
-    double side = 0.0;
-    const std::vector<double> means = reflectedMeans(s, kDirections, settings, kSkySeeds, side);
-    const bias::Deficit deficit = bias::interleavedDeficit(reference, kDirections, kWeighting, kBlocksAlbedo, 1);
-    const bias::Bracket b = bias::bracket(deficit, bias::texelBias(s, reflected, side));
-    std::printf("sky map: interleaved deficit %.5f to %.5f: expected %.4f +- %.4f of the reference\n", deficit.least,
-                deficit.most, b.centre, b.halfWidth);
-    expectSeedsAgree(means, b.centre * lumaMean(reflected), b.halfWidth * lumaMean(reflected), "sky map reflected light");
+    expectReflectedLight(s, 4096, {"atlas_resolution=64", "bundle_resolution=64", "view_samples=16", "directions=importance"},
+                         4, kBlocksAlbedo, 1, "sky map");
 }
 
 

@@ -7,6 +7,7 @@
 #include "modes/atlas/AtlasMode.h"
 #include "modes/reference/ReferenceTestSupport.h"
 #include "scene/SceneLoader.h"
+#include "support/SeedMeans.h"
 #include "support/Statistics.h"
 #include "support/TestFiles.h"
 #include "support/VulkanTest.h"
@@ -17,6 +18,10 @@
 #include <vector>
 
 namespace bl::test::atlasmode {
+
+using bl::test::expectSeedsAgree;
+using bl::test::lumaMean;
+using bl::test::reflectedLight;
 
 namespace stats = bl::test::stats;
 namespace bias = bl::test::atlas;
@@ -45,6 +50,20 @@ protected:
     std::vector<double> reflectedMeans(const Scene& scene, std::uint32_t directions,
                                        const std::vector<std::string>& settings, std::uint32_t seeds, double& side);
 
+    // Over `seeds` seeds, the reflected light (reflectedMeans) against the reference's less the
+    // interleaved deficit (transport norm `norm`, `fromLights` as interleavedDeficit takes it) within
+    // the texel bias of the reflected light; printed under `label`. Defined in AtlasModeTest.cpp.
+    void expectReflectedLight(const Scene& scene, std::uint32_t directions, const std::vector<std::string>& settings,
+                              std::uint32_t seeds, double norm, int fromLights, const std::string& label);
+
+    // The direct atlas's two checks (point lights, or the first shot): over `seeds` seeds, layer
+    // `direct` against the reference's within `other` + the texel bias of the direct light, and
+    // `rest` against the reference's indirect1 + indirect2 + rest less the interleaved deficit
+    // (transport norm `norm`) within `other` + the texel bias of the indirect light; printed under
+    // `label`. Defined in AtlasModeTest.cpp.
+    void expectDirectAndIndirect(const Scene& scene, std::uint32_t directions, const std::vector<std::string>& settings,
+                                 std::uint32_t seeds, double norm, double other, const std::string& label);
+
     // One seed's run at `directions`: its images (checked finite), and the atlas's texel side into
     // `side` on the first call (the atlas does not depend on the seed).
     ImageSet resolveSeed(const Scene& scene, std::uint32_t directions, const std::vector<std::string>& settings,
@@ -57,38 +76,11 @@ protected:
     }
 };
 
-// The light an image set shows reflected: radiance less the emitted layer (emitters and the
-// background seen directly, which the view samples rather than the exchange).
-inline Image reflectedLight(const ImageSet& set) {
-    Image light = set.radiance();
-    const Image& emitted = bl::test::layerOf(set, "emitted");
-    for (std::size_t p = 0; p < light.pixelCount(); ++p) light.pixels()[p] -= emitted.pixels()[p];
-    return light;
-}
-
 inline Scene loadSmall(const std::string& path, int resolution) {
     Scene s = loadScene(bl::test::sourcePath(path));
     s.camera.resolution = {resolution, resolution};
     return s;
 }
-
-// The luminance image mean of an image.
-inline double lumaMean(const Image& image) {
-    double sum = 0.0;
-    for (const glm::vec3& p : image.pixels()) sum += stats::luminance(p);
-    return sum / double(image.pixelCount());
-}
-
-// The seeds' means against `expected` within `tolerance` (absolute), printed.
-inline void expectSeedsAgree(const std::vector<double>& perSeed, double expected, double tolerance, const std::string& what) {
-    const stats::Summary s = stats::summarize(perSeed);
-    std::printf("%s: %.6g +- %.3g (stderr; seeds' sd %.3g, %zu seeds), expected %.6g (%+.3f%%), tolerance %.3g "
-                "(%.3f%%)\n",
-                what.c_str(), s.mean, s.stderr_, s.stddev, s.n, expected, 100.0 * (s.mean / expected - 1.0), tolerance,
-                100.0 * tolerance / expected);
-    EXPECT_TRUE(stats::agrees(s, expected, tolerance, what));
-}
-
 
 inline std::vector<double> Atlas::reflectedMeans(const Scene& scene, std::uint32_t directions,
                                                  const std::vector<std::string>& settings, std::uint32_t seeds,
