@@ -78,27 +78,31 @@ std::vector<shader::GpuEmitterPoint> EmitterPointSampler::sample(std::uint32_t c
     const std::uint32_t key = shader::blHash(seed ^ kEmitterStreamKey) ^ shader::blHash(iteration);
     for (std::uint32_t k = 0; k < count; ++k) {
         const float stratum = (float(k) + shader::blHashRandom(key, 3 * k)) / float(count);
-        const std::size_t i = mByPower.sampleDiscrete(std::min(stratum, 0x1.fffffep-1f));
-        const Mesh& mesh = mScene->meshes[mTriangles[i].mesh];
-        const glm::uvec3 tri = mesh.triangles[mTriangles[i].triangle];
-        const glm::mat4 toWorld = mesh.animation.at(time);
-        const glm::vec3 a = transformPoint(toWorld, mesh.positions[tri.x]);
-        const glm::vec3 b = transformPoint(toWorld, mesh.positions[tri.y]);
-        const glm::vec3 c = transformPoint(toWorld, mesh.positions[tri.z]);
-        // Uniform on the triangle (the square-root warp of the unit square).
-        const float su = std::sqrt(shader::blHashRandom(key, 3 * k + 1));
-        const float v = shader::blHashRandom(key, 3 * k + 2);
-        const float wa = 1.0f - su;
-        const float wb = v * su;
-        shader::GpuEmitterPoint p{};
-        p.position = wa * a + wb * b + (1.0f - wa - wb) * c;
-        p.normal = glm::normalize(glm::cross(b - a, c - a)); // counter-clockwise: the front face
-        p.emission = mesh.emission;
-        p.areaPdf = shader::blEmitterAreaPdf(mesh.emission, mInversePower);
-        p.cubeCentre = p.position + lift * p.normal;
-        points.push_back(p);
+        points.push_back(point(stratum, {shader::blHashRandom(key, 3 * k + 1), shader::blHashRandom(key, 3 * k + 2)},
+                               time, lift));
     }
     return points;
+}
+
+shader::GpuEmitterPoint EmitterPointSampler::point(float power, glm::vec2 u, double time, float lift) const {
+    const std::size_t i = mByPower.sampleDiscrete(std::min(power, 0x1.fffffep-1f));
+    const Mesh& mesh = mScene->meshes[mTriangles[i].mesh];
+    const glm::uvec3 tri = mesh.triangles[mTriangles[i].triangle];
+    const glm::mat4 toWorld = mesh.animation.at(time);
+    const glm::vec3 a = transformPoint(toWorld, mesh.positions[tri.x]);
+    const glm::vec3 b = transformPoint(toWorld, mesh.positions[tri.y]);
+    const glm::vec3 c = transformPoint(toWorld, mesh.positions[tri.z]);
+    // Uniform on the triangle (the square-root warp of the unit square).
+    const float su = std::sqrt(u.x);
+    const float wa = 1.0f - su;
+    const float wb = u.y * su;
+    shader::GpuEmitterPoint p{};
+    p.position = wa * a + wb * b + (1.0f - wa - wb) * c;
+    p.normal = glm::normalize(glm::cross(b - a, c - a)); // counter-clockwise: the front face
+    p.emission = mesh.emission;
+    p.areaPdf = shader::blEmitterAreaPdf(mesh.emission, mInversePower);
+    p.cubeCentre = p.position + lift * p.normal;
+    return p;
 }
 
 } // namespace bl::gpu

@@ -24,6 +24,9 @@ public:
     // point's cube centre sits `lift` world units off the emitter along its front normal.
     std::vector<shader::GpuEmitterPoint> sample(std::uint32_t count, std::uint32_t seed, std::uint32_t iteration,
                                                 double time, float lift) const;
+    // One point from three numbers in [0, 1): `power` picks the triangle by the power CDF, `u` the
+    // point on it (uniform by area). Its density is blEmitterAreaPdf (p_A = mean(L_e) / Phi).
+    shader::GpuEmitterPoint point(float power, glm::vec2 u, double time, float lift) const;
 
 private:
     struct EmitterTriangle {

@@ -128,7 +128,7 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     // The constructor wants room for the lights' cubes too; VPL cubes use slots 0 .. K-1 only.
     const auto vplCubes = std::max<std::uint32_t>(pairs, g->light.shadows->lightCount());
     g->light.vplShadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(vplSide), vplCubes);
-    g->light.vpls = std::make_unique<VplSampler>(scene);
+    g->light.vpls = std::make_unique<VplSampler>(scene, mPlan.runs(kBidirPassAreaVpls));
     g->light.emitterPoints = std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene, areaLit ? points : 0u, pointSide);
     if (o.rsmVpls && g->light.shadows->lightCount() > 0) {
         g->light.rsm = std::make_unique<ReflectiveShadowMap>(*ctx, *g->scene, o.rsmResolution);
@@ -194,6 +194,7 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     specialization[shader::kBidirSpecEnvironment] = g->bundles.environment->count() > 0 ? 1u : 0u;
     specialization[shader::kBidirSpecRsm] = g->light.rsm ? 1u : 0u;
     specialization[shader::kBidirSpecVplTaps] = o.vplShadowTaps;
+    specialization[shader::kBidirSpecAreaVpls] = g->light.vpls->areaSource() ? 1u : 0u;
     g->evaluate = vk::ComputePass<shader::BidirPush>(device, kSpv_modes_bidir_evaluate_comp,
                                                      {g->camera->setLayout(), g->bound.layout()}, specialization);
     mInterleave->preparePipeline(g->camera->setLayout());
@@ -285,11 +286,19 @@ void BidirMode::iterate(const IterationInfo& info) {
     std::vector<shader::BidirVpl> vpls(pairs);
     if (useVpls) {
         const WallSpan wall(g.wallVpls);
-        vpls = g.light.rsm ? g.light.rsm->sample(mInterleave->sequenceBase(mIterations, pairs), pairs,
-                                     static_cast<std::uint32_t>(info.seed), info.time,
-                                     kVplLiftFraction * g.bundles.bounds.radius(), &g.timer)
-                     : g.light.vpls->sample(mInterleave->sequenceBase(mIterations, pairs), pairs, static_cast<std::uint32_t>(info.seed), info.time,
-                              kVplLiftFraction * g.bundles.bounds.radius());
+        const std::uint64_t first = mInterleave->sequenceBase(mIterations, pairs);
+        const auto seed = static_cast<std::uint32_t>(info.seed);
+        const float lift = kVplLiftFraction * g.bundles.bounds.radius();
+        if (g.light.rsm) {
+            // The area source's pairs are traced on the host, the lights' from the cubes.
+            const bool area = g.light.vpls->areaSource();
+            std::vector<std::uint32_t> areaPairs;
+            vpls = g.light.rsm->sample(first, pairs, seed, info.time, lift, &g.timer, area, areaPairs);
+            const float selectPdf = 1.0f / float(lightCount + 1u);
+            for (std::uint32_t k : areaPairs) vpls[k] = g.light.vpls->areaVpl(first + k, seed, info.time, lift, selectPdf);
+        } else {
+            vpls = g.light.vpls->sample(first, pairs, seed, info.time, lift);
+        }
         for (shader::BidirVpl& v : vpls) {
             if (v.valid && !finiteVpl(v)) {
                 v.valid = 0u; // lost work, not a zero sample: counted apart and refused if it is all
@@ -310,7 +319,7 @@ void BidirMode::iterate(const IterationInfo& info) {
     }
     push.width = width;
     push.height = height;
-    push.pairs = lightCount > 0 || g.bundles.pairBundles ? pairs : 0u;
+    push.pairs = lightCount > 0 || g.bundles.pairBundles || useVpls ? pairs : 0u;
     push.lightCount = lightCount;
     push.shadowResolution = g.light.shadows->resolution();
     push.vplResolution = g.light.vplShadows->resolution();

@@ -53,6 +53,13 @@
 //                                   traced: first hits of light rays on the CPU (Embree,
 //                                   VplSampler.h), p_e uniform on the sphere or I(omega) / integral(I)
 //                                   for a spot: exact, the sampler the RSM is checked against.
+//                                   Area emitters are one more VPL source either way (P = 1 / (L +
+//                                   1)): x0 by power as the emitter points, a cosine-weighted CPU
+//                                   ray (VplSampler::areaVpl; with rsm the cubes' pass leaves those
+//                                   pairs to the host), combined with the emitter points at the
+//                                   bundles' hits by the balance heuristic with counts (1 VPL
+//                                   against M points), and the only source of their two-bounce
+//                                   light.
 //   rsm_resolution         256      texels per face side of the reflective shadow cubes ([TO12]: 256)
 //   environment_bundles    21       E bundles per frame for direct environment light, directions by
 //                                   Eq. 2's importance (L_o = 0.1 of the mean luminance), in the
@@ -85,8 +92,8 @@
 //   temporal_depth_variance 1e-4    2 sigma^2 of the caches' log-depth Gaussian ([TO12s]: 1e-4)
 //
 // Textured albedo: at bundle hits (the payload's UV in the packed texture buffer) and at RSM VPLs
-// (the RSM's G-buffer). Not yet: textures at traced VPLs (vpl_source = traced: the material's
-// albedo), area emitters and indirect environment light (not lit here).
+// (the RSM's G-buffer), and at traced VPLs (the hit's UV, atlas/AlbedoLookup.h: the G-buffer's
+// sampling on the host). Not yet: indirect environment light (not lit here).
 #pragma once
 
 #include "bundle/BundlePool.h"
@@ -128,6 +135,7 @@ public:
 
     // The ids of the plan's passes that setScene() and iterate() execute (BidirPlan.cpp).
     static constexpr const char* kBidirPassVpls = "vpls";
+    static constexpr const char* kBidirPassAreaVpls = "area-vpls";
     static constexpr const char* kBidirPassBundles = "bundles";
     static constexpr const char* kBidirPassSuppression = "glossy-suppression";
     static constexpr const char* kBidirPassInterleave = "interleave";

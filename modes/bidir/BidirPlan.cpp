@@ -81,27 +81,38 @@ PassPlan BidirMode::plan(const Scene& scene) const {
     PassPlan p;
     p.add("gbuffer", "gbuffer", true, "always", std::to_string(f.triangles) + " triangles, jittered every frame");
     p.add(lightShadowCubesPass(f, "", "frame"));
-    const bool vpl = lights && (!bundleStrategy || twoBounce);
+    const bool area = f.emissiveMeshes && o.emitterPoints > 0;
+    // Area emitters start light paths as one more source (VplSampler.h; with vpl_source = rsm the
+    // pairs that draw it are traced on the host).
+    const bool areaVpls = area;
+    const bool sources = lights || areaVpls;
+    const bool vpl = sources && (!bundleStrategy || twoBounce);
     p.add(kBidirPassVpls, "VPL rays + VPL shadow cubes", vpl,
-          !lights ? "no-point-or-spot-lights" : !vpl ? "strategy-bundle-one-bounce" : o.rsmVpls ? "rsm" : "traced",
-          !lights ? "no point or spot light to start light paths"
+          !sources ? "no-point-or-spot-lights" : !vpl ? "strategy-bundle-one-bounce" : o.rsmVpls ? "rsm" : "traced",
+          !sources ? "no point or spot light (or area emitter with traced VPLs) to start light paths"
           : vpl   ? pairs + " VPLs per frame (" +
                       (o.rsmVpls ? "GPU, " + std::to_string(o.rsmResolution) + "^2 reflective shadow cube per light"
                                  : std::string("CPU rays, Embree")) +
+                      (areaVpls ? ", the area emitters one source (CPU rays)" : "") +
                       "), a " + std::to_string(o.vplShadowResolution) + "^2 cube each" +
                       (bundleStrategy ? " (for the two-bounce term only)" : "")
                   : "strategy = bundle with bounces = 1 uses no VPL");
-    const bool area = f.emissiveMeshes && o.emitterPoints > 0;
-    // Point/spot lights: bundles for the bundle strategy and the two-bounce term; area emitters (no
-    // VPL from them yet): for the bundle strategy's one-bounce term.
-    const bool bundles = (lights && (!vplStrategy || twoBounce)) || (area && !vplStrategy);
+    p.add(kBidirPassAreaVpls, "VPLs from area emitters", vpl && areaVpls,
+          !area ? "no-area-emitters" : !vpl ? "strategy-bundle-one-bounce" : "traced",
+          !area  ? "no area emitter (or emitter_points = 0)"
+          : !vpl ? "strategy = bundle with bounces = 1 uses no VPL"
+                 : "x0 on the emitters by power, a cosine-weighted CPU ray: one source among the lights, MIS "
+                   "against the emitter points at the bundles' hits");
+    // Bundles for the bundle strategy and the two-bounce term; area emitters without VPLs: for the
+    // bundle strategy's one-bounce term.
+    const bool bundles = (sources && (!vplStrategy || twoBounce)) || (area && !vplStrategy);
     p.add(kBidirPassBundles, "bundle builds", bundles,
           !lights && !area ? "no-lights"
-          : !bundles       ? (lights ? "strategy-vpl-one-bounce" : "strategy-vpl-area-only")
+          : !bundles       ? (sources ? "strategy-vpl-one-bounce" : "strategy-vpl-area-only")
           : vplStrategy    ? "two-bounce-term"
                            : "camera-paths",
           !lights && !area ? "no point, spot or area light: nothing for camera paths to reach"
-          : !bundles && !lights ? "strategy = vpl: area emitters' one-bounce light needs the bundles"
+          : !bundles && !sources ? "strategy = vpl: area emitters' one-bounce light needs the bundles"
           : bundles ? pairs + " bundles of " + std::to_string(o.bundleResolution) +
                           "^2 with hit payload per frame, around the " +
                           (o.fitVisible ? "visible points" : "scene's sphere") +
@@ -110,8 +121,9 @@ PassPlan BidirMode::plan(const Scene& scene) const {
     p.add("evaluate", "evaluate", true,
           lights ? "lights" : area ? "area-emitters-only" : f.environment && o.environmentBundles > 0 ? "environment-only" : "emitters-only",
           lights ? "direct + one-bounce (" + strategy + ")" + (twoBounce ? " + two-bounce" : "") + " at every visible point"
-          : area ? (vplStrategy ? "no point/spot light: area emitters' direct light"
-                                : "no point/spot light: area emitters' direct and one-bounce light")
+          : area ? (areaVpls ? "area emitters' direct + one-bounce (" + strategy + ")" + (twoBounce ? " + two-bounce" : "")
+                    : vplStrategy ? "no point/spot light: area emitters' direct light"
+                                  : "no point/spot light: area emitters' direct and one-bounce light")
           : f.environment && o.environmentBundles > 0
               ? "no point/spot light: emitters, environment background and direct environment light by bundles"
               : "no point/spot light: emitters and environment background only");
@@ -161,17 +173,9 @@ PassPlan BidirMode::plan(const Scene& scene) const {
         p.add(kBidirPassEmitterPoints, "emitter points", area, area ? "area-emitters" : "no-area-emitters",
               area ? std::to_string(o.emitterPoints) + " point(s) on the area emitters per frame, by power, x 6 faces of " +
                          std::to_string(o.emitterShadowResolution) +
-                         "^2: their direct light, and their one-bounce light at the bundles' hits (bundle strategy "
-                         "alone: no VPL leaves an area emitter yet)"
+                         "^2: their direct light, and their one-bounce light at the bundles' hits (with the area "
+                         "VPLs by MIS)"
                    : "no emissive mesh");
-        if (area && vplStrategy) {
-            p.add("area-light-one-bounce", "area light one-bounce", false, "no-vpl-from-area-emitters",
-                  "strategy = vpl: no VPL leaves an area emitter yet, so their one-bounce light is left out", true);
-        }
-        if (area && twoBounce) {
-            p.add("area-light-two-bounce", "area light two-bounce", false, "no-vpl-from-area-emitters",
-                  "two-bounce light from area emitters needs VPLs from them: not yet, layer indirect2 lacks it", true);
-        }
     }
     return p;
 }

@@ -103,8 +103,10 @@ float ReflectiveShadowMap::directionPdf(std::uint32_t light, const glm::vec3& om
 }
 
 std::vector<shader::BidirVpl> ReflectiveShadowMap::sample(std::uint64_t first, std::uint32_t count, std::uint32_t seed,
-                                                          double time, float lift, vk::GpuTimer* timer) {
+                                                          double time, float lift, vk::GpuTimer* timer,
+                                                          bool areaSource, std::vector<std::uint32_t>& areaPairs) {
     std::vector<shader::BidirVpl> out(count);
+    areaPairs.clear();
     const std::vector<Light> sceneLights = mScene->scene().lightsAt(time);
     if (sceneLights.empty() || count == 0) {
         return out;
@@ -128,7 +130,10 @@ std::vector<shader::BidirVpl> ReflectiveShadowMap::sample(std::uint64_t first, s
     shader::BidirRsmPush push{};
     push.pairs = count;
     push.resolution = n;
-    push.lightCount = static_cast<std::uint32_t>(lights.size());
+    // The shader draws the source among lightCount: with the area source one more, which no
+    // dispatch's light matches (its pairs stay unwritten).
+    const auto sources = static_cast<std::uint32_t>(lights.size() + (areaSource ? 1u : 0u));
+    push.lightCount = sources;
     push.key = shader::blHash(seed ^ kRsmStreamKey) ^ shader::blHash(std::uint32_t(first >> 32));
     push.first = static_cast<std::uint32_t>(first);
     const std::uint32_t jitterKey = shader::blHash(push.key ^ kJitterStreamKey) ^ shader::blHash(push.first);
@@ -167,7 +172,12 @@ std::vector<shader::BidirVpl> ReflectiveShadowMap::sample(std::uint64_t first, s
     });
     if (timer) timer->collect();
 
-    const float selectPdf = 1.0f / float(lights.size());
+    const float selectPdf = 1.0f / float(sources);
+    for (std::uint32_t k = 0; areaSource && k < count; ++k) {
+        // rsm_sample.comp.glsl's draw of the source, on the host.
+        const float u = float(shader::blRsmRandom(push.key, push.first + k, 0u) >> 8u) * (1.0f / 16777216.0f);
+        if (std::min(std::uint32_t(u * float(sources)), sources - 1u) == lights.size()) areaPairs.push_back(k);
+    }
     for (std::uint32_t k = 0; k < count; ++k) {
         const shader::BidirRsmTexel& texel = texels[k];
         shader::BidirVpl& v = out[k];

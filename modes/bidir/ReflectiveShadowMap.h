@@ -39,8 +39,11 @@ public:
     // The K VPLs of pairs [first, first + count) for run seed `seed`, the scene at `time`: renders
     // the cubes (submits and waits) and gathers the chosen texels. Rays that escape, or surfaces
     // nothing reflects from, give valid = 0 (still samples). `lift` as VplSampler::sample.
+    // `areaSource`: the area emitters are one more source (P = 1 / (L + 1)); the pairs that draw it
+    // are left invalid here and listed in `areaPairs` for the host to trace (VplSampler::areaVpl).
     std::vector<shader::BidirVpl> sample(std::uint64_t first, std::uint32_t count, std::uint32_t seed, double time,
-                                         float lift, vk::GpuTimer* timer);
+                                         float lift, vk::GpuTimer* timer, bool areaSource,
+                                         std::vector<std::uint32_t>& areaPairs);
 
     // The CDF block the evaluation pass binds (header: N, then the starts of every light's texels).
     VkBuffer cdf() const { return mCdf.get(); }

@@ -30,9 +30,15 @@ layout(set = BL_EMITTER_POINTS_SET, binding = BL_EMITTER_POINTS_BINDING) readonl
 // Folded into the estimate, L_e cos_x cos_y V / (r^2 M p_A) times that weight is
 //   L_e cos_x cos_y V / (M p_A r^2 + directionPdf cos_y),
 // which stays finite where either density vanishes.
+// A strategy that reaches the same path from the emitter's side instead (bidir's area VPLs: the
+// emitter point x0 drawn with p_A as the points are, with share P among the VPL sources, and x from
+// it by a cosine-weighted direction) has the path density P p_A (cos_y / pi) cos_x / r^2 against
+// the points' M p_A pOther, pOther the area density with which the caller's own strategy reached x:
+// vplDensity = P / (pi pOther) adds vplDensity p_A cos_y cos_x to the denominator above (0: none).
 // reflect = false: the irradiance at x instead (f = 1, m, albedo and wo unused), for a caller that
 // applies its own reflectance (atlas texels: albedo / pi).
-vec3 blEmitterPointsSum(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float directionPdf, bool reflect) {
+vec3 blEmitterPointsSum(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float directionPdf, float vplDensity,
+                        bool reflect) {
     uint count = blEmitterPointHeader.count;
     uint resolution = blEmitterPointHeader.resolution;
     vec3 radiance = vec3(0.0);
@@ -57,19 +63,21 @@ vec3 blEmitterPointsSum(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, flo
             continue;
         }
         vec3 f = reflect ? blEvalBrdf(m, albedo, n, wi, wo) : vec3(1.0);
-        radiance += f * p.emission * (cosX * cosY * visibility / (float(count) * p.areaPdf * r2 + directionPdf * cosY));
+        radiance += f * p.emission *
+                    (cosX * cosY * visibility /
+                     (float(count) * p.areaPdf * r2 + directionPdf * cosY + vplDensity * p.areaPdf * cosY * cosX));
     }
     return radiance;
 }
 
 vec3 blEmitterPointsLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float directionPdf) {
-    return blEmitterPointsSum(x, n, m, albedo, wo, directionPdf, true);
+    return blEmitterPointsSum(x, n, m, albedo, wo, directionPdf, 0.0, true);
 }
 
 // The irradiance the points give x on the side of n (no MIS: the points alone).
 vec3 blEmitterPointsIrradiance(vec3 x, vec3 n) {
     GpuMaterial unused = GpuMaterial(vec3(0.0), 0u, vec3(0.0), 0.0, 0.0, 0u, 0u, 0u);
-    return blEmitterPointsSum(x, n, unused, vec3(0.0), n, 0.0, false);
+    return blEmitterPointsSum(x, n, unused, vec3(0.0), n, 0.0, 0.0, false);
 }
 
 // The weight of the direction strategy where it meets an emitter of radiance `emission` at

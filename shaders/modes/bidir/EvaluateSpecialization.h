@@ -20,7 +20,8 @@ BL_CONST uint kBidirSpecTextured = 4u;    // 1: some material has an albedo text
 BL_CONST uint kBidirSpecEnvironment = 5u; // 1: environment bundles light the scene
 BL_CONST uint kBidirSpecRsm = 6u;         // 1: VPLs from reflective shadow maps (their texel CDF gives p_e)
 BL_CONST uint kBidirSpecVplTaps = 7u;     // PCF taps a side of the VPL cubes' lookups (vpl_shadow_taps)
-BL_CONST uint kBidirSpecCount = 8u;
+BL_CONST uint kBidirSpecAreaVpls = 8u;    // 1: the VPL sources include the area emitters (VplSampler.h; index lightCount)
+BL_CONST uint kBidirSpecCount = 9u;
 
 BL_NAMESPACE_END
 #endif

@@ -45,6 +45,7 @@ layout(constant_id = kBidirSpecTextured) const bool kTextured = true;
 layout(constant_id = kBidirSpecEnvironment) const bool kEnvironment = true;
 layout(constant_id = kBidirSpecRsm) const bool kRsm = true;
 layout(constant_id = kBidirSpecVplTaps) const int kVplTaps = 4;
+layout(constant_id = kBidirSpecAreaVpls) const bool kAreaVpls = false;
 
 layout(set = kBidirSet, binding = kBidirBindingLights) readonly buffer LightBlock { GpuLight lights[]; };
 layout(set = kBidirSet, binding = kBidirBindingVpls) readonly buffer VplBlock { BidirVpl vpls[]; };
@@ -107,6 +108,16 @@ void oneBounceDensities(float pA1, float pA2, float pLight, out float dY, out fl
     dX = inv3 > 0.0 ? 1.0 / inv3 : 1e30;
 }
 
+// The VPL sources: the point/spot lights, and the area emitters as one more where kAreaVpls
+// (modes/bidir/VplSampler.h: a pair's source is uniform among them; the area source's VPLs carry
+// light = lightCount).
+float vplSources() { return float(push.lightCount + (kAreaVpls ? 1u : 0u)); }
+bool fromAreaEmitters(BidirVpl v) { return kAreaVpls && v.light == push.lightCount; }
+
+// The bundle strategy's count of samples of the light vertex per bundle hit, against a VPL's one:
+// every point/spot light's shadow cube once, or the M emitter points for the area emitters.
+float bundleLightSamples(BidirVpl v) { return fromAreaEmitters(v) ? float(blEmitterPointHeader.count) : 1.0; }
+
 // Light l's direct light reflected at point p (normal n turned toward wo) toward wo, by its shadow
 // cube; with the light ray's area density P(l) p_e cos / r^2 of p (MIS). pOther >= 0: p is the
 // middle vertex of a one-bounce path whose bundle strategy has area density pOther: the BRDF at p
@@ -130,8 +141,7 @@ vec3 lightAt(uint l, vec3 p, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float 
         return vec3(0.0); // lit on the side wo does not see, or outside the spot cone
     }
     // Traced VPLs: the RSM block is empty and blBidirLightPdf would return this same density.
-    float pLight = (kRsm ? blBidirLightPdf(l, light, fromLight) : blBidirEmissionPdf(light, fromLight)) /
-                   float(push.lightCount);
+    float pLight = (kRsm ? blBidirLightPdf(l, light, fromLight) : blBidirEmissionPdf(light, fromLight)) / vplSources();
     areaPdf = pLight * cosine / r2;
     float visibility = blShadowVisibility(kShadowCubeFaces * l, push.shadowResolution, d, n);
     if (visibility <= 0.0) {
@@ -177,7 +187,9 @@ vec3 vplTerm(uint k, BidirVpl v, GpuMaterial mv, vec3 x, vec3 n, GpuMaterial m, 
     if (!vplEdge(k, v, x, n, wi, r2, cosX, cosY, visibility)) {
         return vec3(0.0);
     }
-    float p2 = push.hemispherePdf * cosY / r2; // the bundle strategy's area density of y
+    // The bundle strategy's area density of y, times its samples of the light vertex (balance
+    // heuristic with counts: the light vertex x0 has the same density in both, p_A or the light's).
+    float p2 = push.hemispherePdf * cosY / r2 * bundleLightSamples(v);
     float dY, dX;
     oneBounceDensities(v.areaPdf, p2, v.pdfLight, dY, dX);
     vec3 fy = bidirBrdf(mv, v.albedo, v.normal, v.toLight, -wi, dY);
@@ -268,10 +280,12 @@ vec3 bundleTerm(uint k, BidirVpl v, GpuMaterial mv, vec3 x, vec3 n, GpuMaterial 
         vec3 fx = bidirBrdf(m, albedo, n, d, wo, dX);
         sum += reflected * fx * (weight * weightX);
     }
-    // Area emitters (emitter points, next-event estimation at y): the bundle strategy alone, since
-    // no VPL leaves an area emitter yet; nothing to suppress against, so x's BRDF is the plain one.
+    // Area emitters (emitter points, next-event estimation at y), against the area VPLs where they
+    // exist (balance heuristic, blEmitterPointsSum's vplDensity: share 1 / vplSources()); x's BRDF
+    // is the plain one (suppression is the VPL side's, as for point lights).
     if (blEmitterPointHeader.count > 0u) {
-        vec3 reflected = blEmitterPointsLight(y, ny, my, ay, wy, 0.0);
+        float vplDensity = kAreaVpls && kStrategy == kBidirStrategyMis && p2 > 0.0 ? 1.0 / (vplSources() * kPi * p2) : 0.0;
+        vec3 reflected = blEmitterPointsSum(y, ny, my, ay, wy, 0.0, vplDensity, true);
         sum += reflected * bidirBrdfUnsuppressed(m, albedo, n, d, wo) * weightX;
     }
     return sum;

@@ -111,8 +111,8 @@ TEST_F(Bidir, SceneWithoutPointLightsRendersEmittersOnly) {
 }
 
 // The area-lit Cornell box (data/cornell-box/cornell.toml: no point light): direct light by emitter
-// points, one-bounce light by the bundle strategy with emitter points at its hits (no VPL leaves an
-// area emitter yet, so the bundle strategy carries it alone under every strategy but vpl), against
+// points, one-bounce light by MIS of the bundle strategy with emitter points at its hits and the
+// area VPLs (VplSampler.h), against
 // the reference's direct and indirect1 layers over 8 seeds: direct region by region within
 // kTolerance (the points' one-tap cubes move contact shadows by under 0.5%: MultibounceTest's
 // kEmitterShadowTolerance), indirect1 region by region within kNoisyTolerance (the bundle strategy
@@ -145,10 +145,81 @@ TEST_F(Bidir, AreaLightByEmitterPointsConvergesToReferenceLayers) {
     EXPECT_EQ(indirect2, 0.0);
 }
 
+// The area VPLs on their own (strategy = vpl, bounces = 2; the same box): x0 on the emitter by
+// power, a cosine-weighted ray, the VPL where it lands, as if a point light of intensity
+// L_e cos0 / p_A had sent it with density cos0 / pi (VplSampler.h). Their one-bounce term alone
+// against the reference's indirect1, and the two-bounce term (the only strategy for indirect2)
+// against its indirect2: image means within kNoisyTolerance (the single strategies' and the
+// two-bounce term's, BidirTestFixture.h) over 8 seeds x 32 frames of 16 pairs. Measured at 8 x 128:
+// indirect1 -0.95 +- 0.79 %, indirect2 -0.92 +- 0.82 % (stderr); kImageTolerance's gate would need
+// about 8 x 256 (each frame renders 16 VPL cubes and 16 bundles). Before the area source both layers
+// were 0 here. Mutation: the area VPL's intensity without its cos0 (L_e / p_A) fails both.
+TEST_F(Bidir, AreaVplsAloneConvergeToReferenceLayers) {
+    Scene s = loadScene(bl::test::sourcePath("data/cornell-box/cornell.toml"));
+    s.camera.resolution = {kResolution, kResolution};
+    constexpr std::uint32_t kAreaFrames = 32, kAreaSeeds = 8;
+    const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
+    std::vector<std::vector<double>> indirect1, indirect2;
+    for (std::uint32_t seed : stats::seeds(kAreaSeeds)) {
+        std::vector<std::string> settings = kCommon;
+        settings.insert(settings.end(), {"strategy=vpl", "bounces=2", "pairs_per_frame=16"});
+        std::unique_ptr<Mode> mode = createMode("bidir", settings);
+        mode->setScene(s, &ctx());
+        for (std::uint32_t f = 0; f < kAreaFrames; ++f) mode->iterate({f, seed, 0.0});
+        const ImageSet out = mode->resolve();
+        EXPECT_EQ(out.nonFiniteSamples, 0u);
+        indirect1.push_back(regionMeans(bl::test::layerOf(out, "indirect1")));
+        indirect2.push_back(regionMeans(bl::test::layerOf(out, "indirect2")));
+    }
+    expectImageMeanConverged(indirect1, regionMeans(bl::test::layerOf(reference, "indirect1")), "area VPLs indirect1",
+                             kNoisyTolerance);
+    expectImageMeanConverged(indirect2, regionMeans(bl::test::layerOf(reference, "indirect2")), "area VPLs indirect2",
+                             kNoisyTolerance);
+}
+
+// vpl_source = rsm with area emitters: the cubes' sampling pass draws the source among the L lights
+// and the area one (P = 1 / (L + 1)); the pairs that draw the area source are left unwritten there
+// and listed for the host to trace (VplSampler::areaVpl). On the box lit by its emitter and one
+// point light, 4096 pairs: the listed share is 1/2 within 4 binomial sigmas (+-3.1 %), no listed
+// pair carries a VPL, every other one is the VPL the same pair gives without the area source (the
+// texel draw is the pair's own) with half its density: P = 1/2 against 1.
+TEST_F(Bidir, RsmLeavesTheAreaSourcesPairsToTheHost) {
+    Scene box = loadScene(bl::test::sourcePath("data/cornell-box/cornell.toml"));
+    const Scene both = bl::test::areaAndPointLit(box, {278.0f, 400.0f, 279.5f}).both;
+    gpu::GpuScene gpuScene(ctx(), both);
+    ReflectiveShadowMap rsm(ctx(), gpuScene, 64);
+    constexpr std::uint32_t kCount = 4096;
+    std::vector<std::uint32_t> areaPairs;
+    const std::vector<shader::BidirVpl> vpls = rsm.sample(0, kCount, 3, 0.0, 0.01f, nullptr, true, areaPairs);
+    std::vector<std::uint32_t> none;
+    const std::vector<shader::BidirVpl> lightOnly = rsm.sample(0, kCount, 3, 0.0, 0.01f, nullptr, false, none);
+    EXPECT_TRUE(none.empty());
+    const double share = double(areaPairs.size()) / kCount;
+    std::printf("area source's share of %u pairs: %.4f\n", kCount, share);
+    EXPECT_NEAR(share, 0.5, 4.0 * std::sqrt(0.25 / kCount));
+    std::vector<bool> listed(kCount, false);
+    for (std::uint32_t k : areaPairs) listed[k] = true;
+    std::uint32_t valid = 0;
+    for (std::uint32_t k = 0; k < kCount; ++k) {
+        if (listed[k]) {
+            EXPECT_EQ(vpls[k].valid, 0u) << "pair " << k;
+            continue;
+        }
+        EXPECT_EQ(vpls[k].valid, lightOnly[k].valid) << "pair " << k;
+        if (!vpls[k].valid) continue;
+        ++valid;
+        EXPECT_EQ(vpls[k].light, 0u);
+        EXPECT_EQ(vpls[k].position, lightOnly[k].position) << "pair " << k;
+        EXPECT_FLOAT_EQ(vpls[k].pdfLight, 0.5f * lightOnly[k].pdfLight) << "pair " << k;
+    }
+    EXPECT_GT(valid, kCount / 4);
+}
+
 // A box lit by both its area emitter and a point light: the emitter points' light adds to the point
-// light's in every layer (same seed: the same VPLs, bundles and emitter points on every side), so
-// direct and indirect1 of both lit = area alone + point alone to float rounding. Mutation: the
-// bundle term's emitter light only where there are no point lights breaks the sum (fails).
+// light's in every layer (strategy = bundle: the same bundles and emitter points on every side; the
+// VPLs would not be the same, their sources being drawn among both), so direct and indirect1 of
+// both lit = area alone + point alone to float rounding. Mutation: the bundle term's emitter light
+// only where there are no point lights breaks the sum (fails).
 TEST_F(Bidir, AreaAndPointLightsAdd) {
     Scene box = loadScene(bl::test::sourcePath("data/cornell-box/cornell.toml"));
     box.camera.resolution = {16, 16};
@@ -156,7 +227,7 @@ TEST_F(Bidir, AreaAndPointLightsAdd) {
     const Scene &area = lit.area, &pointOnly = lit.pointOnly, &both = lit.both;
     const auto means = [&](const Scene& s) {
         std::vector<std::string> settings = kCommon;
-        settings.insert(settings.end(), {"strategy=mis", "bounces=1"});
+        settings.insert(settings.end(), {"strategy=bundle", "bounces=1"});
         std::unique_ptr<Mode> mode = createMode("bidir", settings);
         mode->setScene(s, &ctx());
         for (std::uint32_t f = 0; f < 2; ++f) mode->iterate({f, 5, 0.0});
@@ -308,12 +379,14 @@ TEST_F(Bidir, RsmVplsEstimateWhatTracedVplsEstimate) {
         }
         gpu::GpuScene gpuScene(ctx(), s);
         ReflectiveShadowMap rsm(ctx(), gpuScene, 64);
-        VplSampler traced(s);
+        VplSampler traced(s, false);
         for (const glm::vec3 x : {glm::vec3(278.0f, 0.5f, 60.0f), glm::vec3(100.0f, 0.5f, 100.0f),
                                   glm::vec3(450.0f, 0.5f, 30.0f)}) {
             double sum[2] = {0.0, 0.0}, sum2[2] = {0.0, 0.0};
             for (std::uint32_t r = 0; r < kRounds; ++r) {
-                const std::vector<shader::BidirVpl> vpls[2] = {rsm.sample(std::uint64_t(r) * kCount, kCount, 9, 0.0, 0.01f, nullptr),
+                std::vector<std::uint32_t> noAreaPairs;
+                const std::vector<shader::BidirVpl> vpls[2] = {rsm.sample(std::uint64_t(r) * kCount, kCount, 9, 0.0, 0.01f,
+                                                                          nullptr, false, noAreaPairs),
                                                                traced.sample(std::uint64_t(r) * kCount, kCount, 9, 0.0, 0.01f)};
                 for (int source = 0; source < 2; ++source) {
                     for (const shader::BidirVpl& v : vpls[source]) {
@@ -369,7 +442,7 @@ TEST_F(Bidir, TracedSpotVplsFollowTheProfile) {
         }
         return 2.0 * 3.14159265358979 * sum * (hi - lo) / kSteps;
     };
-    VplSampler traced(s);
+    VplSampler traced(s, false);
     constexpr std::uint32_t kCount = 65536;
     const std::vector<shader::BidirVpl> vpls = traced.sample(0, kCount, 5, 0.0, 0.01f);
     const double cosInner = light.cosInner, cosOuter = light.cosOuter;
