@@ -84,7 +84,8 @@ std::vector<shader::GpuEmitterPoint> EmitterPointSampler::sample(std::uint32_t c
     return points;
 }
 
-shader::GpuEmitterPoint EmitterPointSampler::point(float power, glm::vec2 u, double time, float lift) const {
+shader::GpuEmitterPoint EmitterPointSampler::point(float power, glm::vec2 u, double time, float lift,
+                                                   float* coordinateScale) const {
     const std::size_t i = mByPower.sampleDiscrete(std::min(power, 0x1.fffffep-1f));
     const Mesh& mesh = mScene->meshes[mTriangles[i].mesh];
     const glm::uvec3 tri = mesh.triangles[mTriangles[i].triangle];
@@ -92,6 +93,10 @@ shader::GpuEmitterPoint EmitterPointSampler::point(float power, glm::vec2 u, dou
     const glm::vec3 a = transformPoint(toWorld, mesh.positions[tri.x]);
     const glm::vec3 b = transformPoint(toWorld, mesh.positions[tri.y]);
     const glm::vec3 c = transformPoint(toWorld, mesh.positions[tri.z]);
+    if (coordinateScale) {
+        const glm::vec3 m = glm::max(glm::max(glm::abs(a), glm::abs(b)), glm::abs(c));
+        *coordinateScale = std::max({m.x, m.y, m.z});
+    }
     // Uniform on the triangle (the square-root warp of the unit square).
     const float su = std::sqrt(u.x);
     const float wa = 1.0f - su;

@@ -26,7 +26,10 @@ public:
                                                 double time, float lift) const;
     // One point from three numbers in [0, 1): `power` picks the triangle by the power CDF, `u` the
     // point on it (uniform by area). Its density is blEmitterAreaPdf (p_A = mean(L_e) / Phi).
-    shader::GpuEmitterPoint point(float power, glm::vec2 u, double time, float lift) const;
+    // `coordinateScale` (optional): the largest coordinate magnitude of the triangle's vertices,
+    // for a ray leaving the point (EmbreeScene::offsetOrigin).
+    shader::GpuEmitterPoint point(float power, glm::vec2 u, double time, float lift,
+                                  float* coordinateScale = nullptr) const;
 
 private:
     struct EmitterTriangle {

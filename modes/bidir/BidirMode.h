@@ -11,7 +11,8 @@
 //   bundle strategy (j = 2) I V(x0, y) (n_y.w_{y,0}) / |y - x0|^2 f_{0,y,x} f_{y,x,o} (n.d) / p_r(d),
 //                           y = the next surface from x along d = +-omega_k in bundle k
 //   mis                     each weighted by the balance heuristic p_Aj / (p_A1 + p_A2) of the
-//                           area densities of y ([TO12] Eq. 3-6).
+//                           area densities of y ([TO12] Eq. 3-6); for area emitters with counts,
+//                           one VPL against the M emitter points at the bundle's hit.
 // The mean over the K pairs is one sample of the `indirect1` layer (3 segments); `direct` (the
 // lights by their shadow cubes, 4x4 PCF, as `raster`) and `emitted` are written beside it.
 //

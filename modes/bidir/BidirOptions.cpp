@@ -26,7 +26,9 @@ std::uint32_t uint32Of(const Settings& s, const char* key) { return static_cast<
 } // namespace
 
 bool BidirOptions::suppressesGlossy(const SceneFeatures& f) const {
-    return suppression != shader::kBidirSuppressionNone && f.glossy && f.shadowCastingLights() > 0;
+    // Indirect light needs VPLs: from point/spot lights, or from area emitters (emitter points on).
+    const bool vplSources = f.shadowCastingLights() > 0 || (f.emissiveMeshes && emitterPoints > 0);
+    return suppression != shader::kBidirSuppressionNone && f.glossy && vplSources;
 }
 
 BidirOptions bidirOptions(const Settings& s) {

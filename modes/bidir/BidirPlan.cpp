@@ -65,7 +65,7 @@ std::vector<ParamSpec> BidirMode::parameters() {
          0.0, 1.0, {}},
     };
     return withEmitterPointParameters(std::move(params), "frame",
-                                      "direct and one-bounce light from area emitters (0: area lights left out)", 0);
+                                      "direct, one- and two-bounce light from area emitters (0: area lights left out)", 0);
 }
 
 // The pass ids iterate() and setScene() ask about are the kBidirPass* names in BidirMode.h.
@@ -88,12 +88,13 @@ PassPlan BidirMode::plan(const Scene& scene) const {
     const bool sources = lights || areaVpls;
     const bool vpl = sources && (!bundleStrategy || twoBounce);
     p.add(kBidirPassVpls, "VPL rays + VPL shadow cubes", vpl,
-          !sources ? "no-point-or-spot-lights" : !vpl ? "strategy-bundle-one-bounce" : o.rsmVpls ? "rsm" : "traced",
-          !sources ? "no point or spot light (or area emitter with traced VPLs) to start light paths"
+          !sources ? "no-point-or-spot-lights" : !vpl ? "strategy-bundle-one-bounce" : o.rsmVpls && lights ? "rsm" : "traced",
+          !sources ? "no point, spot or area light to start light paths"
           : vpl   ? pairs + " VPLs per frame (" +
-                      (o.rsmVpls ? "GPU, " + std::to_string(o.rsmResolution) + "^2 reflective shadow cube per light"
-                                 : std::string("CPU rays, Embree")) +
-                      (areaVpls ? ", the area emitters one source (CPU rays)" : "") +
+                      (!lights     ? std::string("area emitters only: CPU rays, Embree")
+                       : o.rsmVpls ? "GPU, " + std::to_string(o.rsmResolution) + "^2 reflective shadow cube per light"
+                                   : std::string("CPU rays, Embree")) +
+                      (areaVpls && lights ? ", the area emitters one more source (CPU rays)" : "") +
                       "), a " + std::to_string(o.vplShadowResolution) + "^2 cube each" +
                       (bundleStrategy ? " (for the two-bounce term only)" : "")
                   : "strategy = bundle with bounces = 1 uses no VPL");
@@ -130,10 +131,10 @@ PassPlan BidirMode::plan(const Scene& scene) const {
     const std::string& suppression = o.suppressionName;
     const bool suppress = o.suppressesGlossy(f);
     p.add(kBidirPassSuppression, "glossy suppression (" + suppression + ")", suppress,
-          suppress ? "glossy-vertices" : suppression == "none" ? "suppression-none" : !lights ? "no-point-or-spot-lights" : "no-glossy-material",
+          suppress ? "glossy-vertices" : suppression == "none" ? "suppression-none" : !sources ? "no-point-or-spot-lights" : "no-glossy-material",
           suppress               ? "sample densities (Eq. 13-17) at the glossy vertices of indirect paths"
           : suppression == "none" ? "suppression = none"
-          : !lights              ? "no indirect light without point/spot lights"
+          : !sources             ? "no indirect light without point/spot lights or area emitters"
                                  : "no glossy material: every BRDF is Lambertian, nothing to suppress");
     const std::uint32_t n = o.interleave;
     const bool filter = o.interleaveFilter;

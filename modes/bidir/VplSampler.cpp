@@ -107,9 +107,11 @@ shader::BidirVpl VplSampler::areaVpl(std::uint64_t pair, std::uint32_t seed, dou
     // x0 from numbers of a stream of its own (the point lights' streams stay as they were), the
     // direction from the pair's own two.
     const std::uint32_t areaKey = shader::blHash(key ^ kAreaStreamKey);
+    float coordinateScale = 0.0f; // the triangle's: the ray's offset off it (EmbreeScene::offsetOrigin)
     const shader::GpuEmitterPoint x0 = mEmitters.point(
         shader::blHashRandom(areaKey, 3 * index),
-        {shader::blHashRandom(areaKey, 3 * index + 1), shader::blHashRandom(areaKey, 3 * index + 2)}, time, 0.0f);
+        {shader::blHashRandom(areaKey, 3 * index + 1), shader::blHashRandom(areaKey, 3 * index + 2)}, time, 0.0f,
+        &coordinateScale);
     const glm::vec2 u(shader::blHashRandom(key, 3 * index + 1), shader::blHashRandom(key, 3 * index + 2));
     glm::vec3 t, b;
     shader::blOrthonormalBasis(x0.normal, t, b);
@@ -119,7 +121,7 @@ shader::BidirVpl VplSampler::areaVpl(std::uint64_t pair, std::uint32_t seed, dou
     v.pdfLight = selectPdf * cos0 * shader::kInvPi;
     v.intensity = x0.emission * (x0.areaPdf > 0.0f ? cos0 / x0.areaPdf : 0.0f);
     SurfaceHit hit;
-    if (v.pdfLight > 0.0f && mEmbree->intersect(EmbreeScene::offsetOrigin(x0.position, x0.normal, 0.0f), omega,
+    if (v.pdfLight > 0.0f && mEmbree->intersect(EmbreeScene::offsetOrigin(x0.position, x0.normal, coordinateScale), omega,
                                                 std::numeric_limits<float>::infinity(), hit)) {
         landed(v, omega, hit, lift);
     } // else escaped: a sample of zero

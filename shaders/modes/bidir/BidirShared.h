@@ -30,12 +30,13 @@ BL_CONST uint kBidirStrategyMis = 2u;    // both, balance heuristic
 // x0 -> y -> x for any camera point x.
 struct BidirVpl {
     vec3 position;     // y
-    uint light;        // index of the light it came from
+    uint light;        // index of the light it came from; the light count for the area emitters' source
     vec3 normal;       // shading normal at y turned toward the light (the lit side)
     uint material;     // material index at y
     vec3 albedo;       // albedo at y (material, texture applied on the host)
     float pdfLight;    // P(light) p_e(omega_{0,1}): solid-angle density of the light ray
-    vec3 intensity;    // I(omega_{0,1}): the light's intensity along the ray, profile applied
+    vec3 intensity;    // I(omega_{0,1}): the light's intensity along the ray, profile applied (area
+                       // source: L_e cos0 / p_A(x0), VplSampler.h)
     float areaPdf;     // P(light) p_e(omega_{0,1}) (n_y . omega_{y,0}) / |y - x0|^2 (area measure)
     vec3 toLight;      // omega_{y,0}, unit
     uint valid;        // 0: the light ray escaped or hit a black / back-lit surface: adds nothing

@@ -9,7 +9,9 @@
 //     p_A2(y) = p_r (n_y . w_{y,x}) / |y - x|^2), lit by every light through its shadow cube.
 // Each term is I f_{0,j,x} f_{j,x,4} G / p_A with the path's geometry, and MIS weighs it by
 // p_A,j / (p_A1 + p_A2) (balance heuristic): the ratio equals p1/p2 of [TO12 Eq. 6], both densities
-// of the same vertex in the same (area) measure. The mean over the K pairs is one sample of the
+// of the same vertex in the same (area) measure. Area emitters: the VPLs of the area source (x0 by
+// power, VplSampler.h) against the M emitter points at the bundle's hit, by the balance heuristic
+// with counts, p_A1 / (p_A1 + M p_A2) (x0's own density p_A is the same in both). The mean over the K pairs is one sample of the
 // indirect1 layer; direct light comes from the lights' shadow cubes as in `raster`. With
 // bounces = 2 pair k also gives the two-bounce path x0 -> VPL k -> bundle k's hit -> x (Eq. 7-8,
 // one strategy, no MIS), the mean over the pairs one sample of the indirect2 layer.
@@ -187,9 +189,7 @@ vec3 vplTerm(uint k, BidirVpl v, GpuMaterial mv, vec3 x, vec3 n, GpuMaterial m, 
     if (!vplEdge(k, v, x, n, wi, r2, cosX, cosY, visibility)) {
         return vec3(0.0);
     }
-    // The bundle strategy's area density of y, times its samples of the light vertex (balance
-    // heuristic with counts: the light vertex x0 has the same density in both, p_A or the light's).
-    float p2 = push.hemispherePdf * cosY / r2 * bundleLightSamples(v);
+    float p2 = push.hemispherePdf * cosY / r2; // the bundle strategy's area density of y
     float dY, dX;
     oneBounceDensities(v.areaPdf, p2, v.pdfLight, dY, dX);
     vec3 fy = bidirBrdf(mv, v.albedo, v.normal, v.toLight, -wi, dY);
@@ -199,7 +199,9 @@ vec3 vplTerm(uint k, BidirVpl v, GpuMaterial mv, vec3 x, vec3 n, GpuMaterial m, 
     if (kStrategy == kBidirStrategyVpl) {
         return estimate;
     }
-    return estimate * (v.areaPdf / (v.areaPdf + p2));
+    // Balance heuristic with counts: the bundle strategy samples the light vertex bundleLightSamples
+    // times per hit (x0 has the same density in both, p_A or the light's).
+    return estimate * (v.areaPdf / (v.areaPdf + bundleLightSamples(v) * p2));
 }
 
 // Two-bounce path x0 -> x1 = VPL k -> x2 = y -> x ([TO12] Eq. 7-8), y the bundle hit of pair k
@@ -281,8 +283,9 @@ vec3 bundleTerm(uint k, BidirVpl v, GpuMaterial mv, vec3 x, vec3 n, GpuMaterial 
         sum += reflected * fx * (weight * weightX);
     }
     // Area emitters (emitter points, next-event estimation at y), against the area VPLs where they
-    // exist (balance heuristic, blEmitterPointsSum's vplDensity: share 1 / vplSources()); x's BRDF
-    // is the plain one (suppression is the VPL side's, as for point lights).
+    // exist (balance heuristic, blEmitterPointsSum's vplDensity: share 1 / vplSources()). Unlike the
+    // lights' term above, no BRDF here is suppressed: the points' sum carries no sample density of
+    // the path (the area VPLs' side is; a stated gap of the glossy suppression).
     if (blEmitterPointHeader.count > 0u) {
         float vplDensity = kAreaVpls && kStrategy == kBidirStrategyMis && p2 > 0.0 ? 1.0 / (vplSources() * kPi * p2) : 0.0;
         vec3 reflected = blEmitterPointsSum(y, ny, my, ay, wy, 0.0, vplDensity, true);

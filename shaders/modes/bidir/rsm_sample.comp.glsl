@@ -22,7 +22,9 @@ void main() {
         return;
     }
     uint index = push.first + k;
-    // The light: uniform among the lights (P(l) = 1 / L), from the top bits of a 32-bit draw.
+    // The source: uniform among push.lightCount (the L lights, and the area emitters as source L,
+    // which no dispatch's light matches: the host traces those pairs), from the top bits of a
+    // 32-bit draw (ReflectiveShadowMap.cpp repeats it on the host).
     float uLight = float(blRsmRandom(push.key, index, 0u) >> 8u) * (1.0 / 16777216.0);
     uint l = min(uint(uLight * float(push.lightCount)), push.lightCount - 1u);
     if (l != push.light) {

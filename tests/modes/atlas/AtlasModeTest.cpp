@@ -280,7 +280,8 @@ TEST_F(Atlas, CornellDelayedOneBounceChannelIsTheFirstBouncePass) {
 // light, the transport's norm the largest albedo + specular (the sphere's 0.33 + 0.5). The texel
 // average of a lobe over the normals a texel of the sphere spans (+-0.03 rad at 128^2, the lobe's
 // width 1 / sqrt(41) = 0.16 rad) is second order, (0.03 / 0.16)^2 / 2 = 2 % of the light the sphere
-// reflects glossily, a fraction of `rest`. 4 seeds at 512 directions, 128^2 atlas and bundles:
+// reflects glossily, a fraction of `rest`, left out of the bracket. 4 seeds at 512 directions, 128^2
+// atlas and bundles:
 // direct +2.9 % of its bracket's centre (1.002 of the reference; tolerance 3.8 %), indirect +1.6 %
 // (0.993; tolerance 3.3 %), seeds' sd 1.0 %. At 256 directions the glossy transfer's heavy tail
 // spreads the seeds by 4 % (too noisy for the gate). Mutation: glossy = gather (no glossy transfer
