@@ -294,8 +294,7 @@ void BidirMode::iterate(const IterationInfo& info) {
             const bool area = g.light.vpls->areaSource();
             std::vector<std::uint32_t> areaPairs;
             vpls = g.light.rsm->sample(first, pairs, seed, info.time, lift, &g.timer, area, areaPairs);
-            const float selectPdf = 1.0f / float(lightCount + 1u);
-            for (std::uint32_t k : areaPairs) vpls[k] = g.light.vpls->areaVpl(first + k, seed, info.time, lift, selectPdf);
+            for (std::uint32_t k : areaPairs) vpls[k] = g.light.vpls->areaVpl(first + k, seed, info.time, lift);
         } else {
             vpls = g.light.vpls->sample(first, pairs, seed, info.time, lift);
         }

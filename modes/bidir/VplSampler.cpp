@@ -76,7 +76,7 @@ std::vector<shader::BidirVpl> VplSampler::sample(std::uint64_t first, std::uint3
         const float uLight = shader::blHashRandom(key, 3 * index);
         const auto l = std::min<std::size_t>(static_cast<std::size_t>(uLight * float(sources)), sources - 1);
         if (l == lights.size()) {
-            v = areaVpl(pair, seed, time, lift, selectPdf);
+            v = areaVpl(pair, seed, time, lift);
             continue;
         }
         const glm::vec2 u(shader::blHashRandom(key, 3 * index + 1), shader::blHashRandom(key, 3 * index + 2));
@@ -94,14 +94,15 @@ std::vector<shader::BidirVpl> VplSampler::sample(std::uint64_t first, std::uint3
     return out;
 }
 
-shader::BidirVpl VplSampler::areaVpl(std::uint64_t pair, std::uint32_t seed, double time, float lift,
-                                     float selectPdf) {
+shader::BidirVpl VplSampler::areaVpl(std::uint64_t pair, std::uint32_t seed, double time, float lift) {
     bake(time);
     shader::BidirVpl v{};
-    v.light = static_cast<std::uint32_t>(mScene->lightsAt(time).size());
+    const std::size_t lights = mScene->lightsAt(time).size();
+    v.light = static_cast<std::uint32_t>(lights);
     if (!areaSource()) {
         return v;
     }
+    const float selectPdf = 1.0f / float(lights + 1); // the source: one among the L lights and the area one
     const std::uint32_t key = pairKey(seed, pair);
     const std::uint32_t index = static_cast<std::uint32_t>(pair);
     // x0 from numbers of a stream of its own (the point lights' streams stay as they were), the

@@ -46,10 +46,10 @@ public:
     std::vector<shader::BidirVpl> sample(std::uint64_t first, std::uint32_t count, std::uint32_t seed, double time,
                                          float lift);
 
-    // Pair `pair`'s VPL from the area emitters, the source chosen with probability selectPdf
+    // Pair `pair`'s VPL from the area emitters, the source chosen with probability 1 / (L + 1)
     // (VplSampler's own choice, or the reflective shadow map's: vpl_source = rsm traces its area
     // pairs here). Invalid without an area source.
-    shader::BidirVpl areaVpl(std::uint64_t pair, std::uint32_t seed, double time, float lift, float selectPdf);
+    shader::BidirVpl areaVpl(std::uint64_t pair, std::uint32_t seed, double time, float lift);
 
     // Whether the area emitters are a VPL source (the scene has emissive triangles).
     bool areaSource() const { return mAreaSource; }
