@@ -5,6 +5,7 @@
 
 #include <bundle/depth_map.frag.spv.h>
 #include <bundle/depth_map.vert.spv.h>
+#include <algorithm>
 #include <limits>
 
 namespace bl {
@@ -14,11 +15,12 @@ constexpr VkFormat kMapFormat = VK_FORMAT_R32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 } // namespace
 
-DepthMapPass::DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, std::uint32_t resolution)
-    : mScene(&scene), mResolution(resolution) {
+DepthMapPass::DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, std::uint32_t resolution,
+                           std::uint32_t layers)
+    : mScene(&scene), mResolution(resolution), mArray(layers > 0) {
     VkDevice device = ctx.device();
-    mMap = vk::GpuImage(ctx, {resolution, resolution, 1, kMapFormat,
-                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT});
+    mMap = vk::GpuImage(ctx, {resolution, resolution, std::max(layers, 1u), kMapFormat,
+                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, mArray});
     mDepth = vk::GpuImage(ctx, {resolution, resolution, 1, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
     mFrame = gpu::RecordedUniform<shader::BundleFrame>(ctx);
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -37,13 +39,18 @@ DepthMapPass::DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, s
     mPipeline = vk::makeGraphicsPipeline(device, desc);
 }
 
-void DepthMapPass::record(VkCommandBuffer cmd, const shader::BundleFrame& frame, double time, vk::GpuTimer* timer) {
+void DepthMapPass::record(VkCommandBuffer cmd, const shader::BundleFrame& frame, double time, vk::GpuTimer* timer,
+                          std::uint32_t layer) {
     std::uint32_t scope = timer ? timer->start(cmd, "depth map") : 0;
     mFrame.record(cmd, frame);
-    vk::transitionImage(cmd, mMap.get(), vk::toColorAttachment());
+    // Only this layer changes layout (its old map is discarded); the others keep theirs.
+    vk::ImageTransition toAttachment = vk::toColorAttachment();
+    toAttachment.baseLayer = layer;
+    toAttachment.layerCount = 1;
+    vk::transitionImage(cmd, mMap.get(), toAttachment);
     vk::transitionImage(cmd, mDepth.get(), vk::toDepthAttachment());
     vk::RenderTargets targets;
-    targets.colors = {mMap.view()};
+    targets.colors = {mArray ? mMap.layerView(layer) : mMap.view()};
     targets.clearColor = {{-std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f}};
     targets.depth = mDepth.view();
     targets.clearDepth = 0.0f;
@@ -60,7 +67,10 @@ void DepthMapPass::record(VkCommandBuffer cmd, const shader::BundleFrame& frame,
         vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
     }
     vkCmdEndRendering(cmd);
-    vk::transitionImage(cmd, mMap.get(), vk::colorAttachmentToGeneral());
+    vk::ImageTransition toGeneral = vk::colorAttachmentToGeneral();
+    toGeneral.baseLayer = layer;
+    toGeneral.layerCount = 1;
+    vk::transitionImage(cmd, mMap.get(), toGeneral);
     if (timer) {
         timer->stop(cmd, scope);
     }

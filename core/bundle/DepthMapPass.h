@@ -2,7 +2,8 @@
 // shadow map), keeping only the surface nearest to a light at +infinity along omega. A point can
 // use it for one direction only (omega), where a bundle answers omega and -omega for everyone:
 // the comparison [TO12] makes. The map (r32f, linear depth in world units, -inf where empty) is in
-// VK_IMAGE_LAYOUT_GENERAL after record().
+// VK_IMAGE_LAYOUT_GENERAL after record(). With `layers` > 0 the image is a 2D array of that many
+// maps (one per direction: EnvironmentShadowPass), each record rendering one layer.
 #pragma once
 
 #include "gpu/GpuScene.h"
@@ -18,11 +19,14 @@ namespace bl {
 
 class DepthMapPass {
 public:
-    DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, std::uint32_t resolution);
+    // `layers` = 0: one map, viewed as a 2D image; else a 2D array of `layers` maps.
+    DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, std::uint32_t resolution, std::uint32_t layers = 0);
 
-    // Renders the map for `frame` (width and height at most the resolution). The frame is written
-    // in the command stream: several records in one command buffer each use their own.
-    void record(VkCommandBuffer cmd, const shader::BundleFrame& frame, double time, vk::GpuTimer* timer);
+    // Renders the map for `frame` (width and height at most the resolution) into `layer` (the
+    // other layers keep theirs). The frame is written in the command stream: several records in one
+    // command buffer each use their own.
+    void record(VkCommandBuffer cmd, const shader::BundleFrame& frame, double time, vk::GpuTimer* timer,
+                std::uint32_t layer = 0);
 
     const vk::GpuImage& map() const { return mMap; }
     VkBuffer frameBuffer() const { return mFrame.get(); }
@@ -30,6 +34,7 @@ public:
 private:
     const gpu::GpuScene* mScene;
     std::uint32_t mResolution;
+    bool mArray = false;
     vk::GpuImage mMap;
     vk::GpuImage mDepth;
     gpu::RecordedUniform<shader::BundleFrame> mFrame;

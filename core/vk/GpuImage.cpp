@@ -77,7 +77,7 @@ GpuImage::GpuImage(const Context& ctx, const GpuImageDesc& desc) : mDesc(desc) {
     };
     bool array = desc.arrayView || desc.layers > 1;
     mView = makeView(array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D, 0, desc.layers);
-    if (desc.layers > 1) {
+    if (array) { // every layer its own 2D view too (an attachment is one layer)
         for (std::uint32_t l = 0; l < desc.layers; ++l) {
             mLayerViews.push_back(makeView(VK_IMAGE_VIEW_TYPE_2D, l, 1));
         }

@@ -1,11 +1,14 @@
 // Mode atlas's first shot (first_shot = auto | on): the area emitters' direct light by emitter points
-// (gpu/EmitterPointPass.h) into the direct atlas, a new set of points every direction, so the
-// exchange carries reflected light only (shaders/modes/atlas/first_shot.comp.glsl).
+// (gpu/EmitterPointPass.h) and the environment's by environment_shots directional depth maps drawn
+// by its importance (bundle/DepthMapPass.h) into the direct atlas, new points and directions every
+// direction, so the exchange carries reflected light only (shaders/modes/atlas/first_shot.comp.glsl,
+// environment_shot.comp.glsl).
 #include "modes/atlas/AtlasGpu.h"
 
 #include "vk/Commands.h"
 
 #include <modes/atlas/AtlasShared.h>
+#include <modes/atlas/environment_shot.comp.spv.h>
 #include <modes/atlas/first_shot.comp.spv.h>
 
 namespace bl {
@@ -15,13 +18,16 @@ using atlasmode::kStorage;
 
 AtlasMode::FirstShotChoice AtlasMode::firstShotChoice(const Scene& scene) const {
     const SceneFeatures f = scene.features();
+    const AtlasModeOptions& o = mOptions;
     FirstShotChoice c;
-    if (!f.emissiveMeshes) {
-        c.code = "no-area-emitters";
-        c.why = "no area emitters";
+    c.area = f.emissiveMeshes;
+    c.environment = f.environment && o.environmentShots > 0;
+    if (!c.area && !c.environment) {
+        c.code = f.environment ? "environment-shots-0" : "no-area-emitters";
+        c.why = f.environment ? "no area emitters, and environment_shots = 0: the exchange's list ends carry the environment"
+                              : "no area emitters or environment";
         return c;
     }
-    const AtlasModeOptions& o = mOptions;
     std::string conflictCode;
     if (o.bounce) {
         c.conflict = "transfer = bounce";
@@ -33,17 +39,21 @@ AtlasMode::FirstShotChoice AtlasMode::firstShotChoice(const Scene& scene) const 
         c.conflict = "glossy = " + o.glossy + " on glossy materials";
         conflictCode = "glossy-transport";
     }
+    const std::string sources = c.area && c.environment ? "the emitters' and the environment's" : c.area ? "the emitters'" : "the environment's";
     if (o.firstShot == "off") {
         c.code = "first-shot-off";
-        c.why = "first_shot = off: the exchange carries the emitters' light";
+        c.why = "first_shot = off: the exchange carries " + sources + " light";
     } else if (!c.conflict.empty()) {
         c.code = conflictCode;
         c.why = o.firstShot == "on"
                     ? "first_shot = on with " + c.conflict + ": refused at set-up (first_shot = auto leaves the shot out)"
-                    : "first_shot = auto, " + c.conflict + ": the exchange carries the emitters' light";
+                    : "first_shot = auto, " + c.conflict + ": the exchange carries " + sources + " light";
     } else {
         c.runs = true;
-        c.code = "area-emitters";
+        c.code = c.area && c.environment ? "area-emitters-environment" : c.area ? "area-emitters" : "environment";
+    }
+    if (!c.runs) {
+        c.area = c.environment = false;
     }
     return c;
 }
@@ -54,9 +64,15 @@ void AtlasMode::setUpFirstShot(const Scene& scene) {
     if (!g.direct.firstShot) {
         return;
     }
-    const std::uint32_t points = mOptions.emitterPoints;
+    const FirstShotChoice choice = firstShotChoice(scene);
+    // Without area emitters the points' pass is off (placeholders bound, no point adds light).
+    const std::uint32_t points = choice.area ? mOptions.emitterPoints : 0;
     const std::uint32_t side = mOptions.emitterShadowResolution;
-    mContext->requireDeviceMemory(gpu::EmitterPointPass::bytesFor(points, side) +
+    const VkDeviceSize environmentBytes =
+        choice.environment
+            ? EnvironmentShadowPass::bytesFor(mOptions.environmentShots, mOptions.environmentShadowResolution)
+            : 0;
+    mContext->requireDeviceMemory(gpu::EmitterPointPass::bytesFor(points, side) + environmentBytes +
                                       VkDeviceSize(g.link.texelCount) * shader::kAtlasSides * 2 * sizeof(glm::vec4),
                                   "atlas first shot");
     g.direct.emitterPoints = std::make_unique<gpu::EmitterPointPass>(*mContext, *g.scene, scene, points, side);
@@ -71,10 +87,41 @@ void AtlasMode::setUpFirstShot(const Scene& scene) {
                  vk::Bound::storageImage(shader::kAtlasFirstShotBindingMaps2, g.direct.emitterPoints->maps().view())});
     g.direct.firstShotPass = vk::ComputePass<shader::AtlasFirstShotPush>(device, kSpv_modes_atlas_first_shot_comp,
                                                                          {g.direct.firstShotSet.layout()});
+    if (!choice.environment) {
+        return;
+    }
+    g.direct.environmentShadows = std::make_unique<EnvironmentShadowPass>(
+        *mContext, *g.scene, scene, mOptions.environmentShots, mOptions.environmentShadowResolution);
+    g.direct.environmentShotSet = vk::BoundSet(
+        device,
+        {vk::Bound::storageBuffer(shader::kAtlasEnvironmentShotBindingShadows, g.direct.environmentShadows->buffer()),
+         vk::Bound::storageImage(shader::kAtlasEnvironmentShotBindingMaps, g.direct.environmentShadows->maps().view())});
+    g.direct.environmentShotPass = vk::ComputePass<shader::AtlasEnvironmentShotPush>(
+        device, kSpv_modes_atlas_environment_shot_comp, {g.direct.environmentShotSet.layout()});
+}
+
+void AtlasMode::recordEnvironmentShot(VkCommandBuffer cmd, double time) {
+    Gpu& g = *mGpu;
+    g.direct.environmentShadows->record(cmd, time, &g.timer);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    shader::AtlasEnvironmentShotPush push{};
+    push.samples = addressOf(*mContext, g.direct.samples);
+    push.first = addressOf(*mContext, g.direct.firstSample);
+    push.texels = addressOf(*mContext, g.link.texels);
+    push.shotSum = addressOf(*mContext, g.direct.shotSum);
+    push.texelCount = g.link.texelCount;
+    const std::uint32_t scope = g.timer.start(cmd, "environment shot");
+    g.direct.environmentShotPass.dispatch(cmd, push, vk::groupCount(g.link.texelCount, shader::kAtlasGroupSize),
+                                          g.direct.environmentShotSet.sets());
+    g.timer.stop(cmd, scope);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }
 
 void AtlasMode::recordFirstShot(VkCommandBuffer cmd, double time) {
     Gpu& g = *mGpu;
+    if (g.direct.environmentShadows) {
+        recordEnvironmentShot(cmd, time);
+    }
     g.direct.emitterPoints->record(cmd, time, &g.timer);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     shader::AtlasFirstShotPush push{};

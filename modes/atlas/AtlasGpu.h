@@ -6,6 +6,7 @@
 #include "atlas/Atlas.h"
 #include "atlas/AtlasLink.h"
 #include "bundle/BundlePool.h"
+#include "bundle/EnvironmentShadowPass.h"
 #include "bundle/DirectionSampler.h"
 #include "bundle/FittingBuild.h"
 #include "gpu/CameraPass.h"
@@ -80,10 +81,14 @@ struct AtlasDirectState {
     // first_shot: the emitter points, the point/spot lights' part of the direct atlas kept apart
     // and the running sum of the shots (vec4 per texel side each).
     bool firstShot = false;
-    std::unique_ptr<gpu::EmitterPointPass> emitterPoints;
+    std::unique_ptr<gpu::EmitterPointPass> emitterPoints; // no points where only the environment is shot
     vk::Buffer pointDirect, shotSum;
     vk::BoundSet firstShotSet;
     vk::ComputePass<shader::AtlasFirstShotPush> firstShotPass;
+    // The environment's part (environment_shots > 0): its directions and their depth maps.
+    std::unique_ptr<EnvironmentShadowPass> environmentShadows;
+    vk::BoundSet environmentShotSet;
+    vk::ComputePass<shader::AtlasEnvironmentShotPush> environmentShotPass;
 };
 
 // The glossy passes (AtlasGlossy.cpp, [HHGM10] §5.3-5.4): the transfer atlas rides in the

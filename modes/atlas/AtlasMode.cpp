@@ -304,7 +304,9 @@ shader::AtlasDirection AtlasMode::directionParams(const shader::BundleFrame& fra
     shader::AtlasDirection params{};
     // Radiance arriving from +omega at the last hit of a list, from -omega at the first.
     // Bounce-by-bounce: the environment is a source, sent in pass 1 only (later passes send reflected light).
-    const bool environment = g.exchange.environment.present() && (!mOptions.bounce || mPass == 1);
+    // The environment's first shot has lit every texel directly: its list ends receive nothing.
+    const bool environment =
+        g.exchange.environment.present() && (!mOptions.bounce || mPass == 1) && !g.direct.environmentShadows;
     params.environmentForward = environment ? g.exchange.environment.radiance(frame.direction) : glm::vec3(0.0f);
     params.environmentBackward = environment ? g.exchange.environment.radiance(-frame.direction) : glm::vec3(0.0f);
     const float density = g.exchange.directions->hemispherePdf(frame.direction);
@@ -412,6 +414,9 @@ void AtlasMode::iterate(const IterationInfo& info) {
     update.iteration = mIterations;
     if (g.direct.firstShot) {
         g.direct.emitterPoints->prepare(info.seed, mIterations, info.time);
+        if (g.direct.environmentShadows) {
+            g.direct.environmentShadows->prepare(info.seed, mIterations);
+        }
     }
     std::optional<WallSpan> wall(std::in_place, g.exchange.wallExchange);
     mContext->submitAndWait([&](VkCommandBuffer cmd) {

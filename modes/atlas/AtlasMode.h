@@ -153,6 +153,8 @@ public:
     static constexpr const char* kFirstShot = "first_shot";
     static constexpr const char* kEmitterPoints = "emitter_points";
     static constexpr const char* kEmitterShadowResolution = "emitter_shadow_resolution";
+    static constexpr const char* kEnvironmentShots = "environment_shots";
+    static constexpr const char* kEnvironmentShadowResolution = "environment_shadow_resolution";
 
     // The ids of the plan's passes that setScene() and iterate() execute (AtlasPlan.cpp).
     static constexpr const char* kPassFirstShot = "first-shot";
@@ -226,12 +228,16 @@ private:
     // transport): first_shot = auto then leaves the shot out, first_shot = on is refused.
     struct FirstShotChoice {
         bool runs = false;
+        bool area = false;        // the area emitters' part (emitter points)
+        bool environment = false; // the environment's part (environment_shots depth maps)
         std::string code; // the plan's reason code
         std::string why;
         std::string conflict;
     };
     FirstShotChoice firstShotChoice(const Scene& scene) const;
     void recordFirstShot(VkCommandBuffer cmd, double time);
+    // The environment's part: environment_shots depth maps and their light into the shots' sum.
+    void recordEnvironmentShot(VkCommandBuffer cmd, double time);
     // The sampler index of the i-th direction processed (shuffled in blocks for the glossy
     // transfer, DirectionOrder.h; else i).
     std::uint32_t directionIndex(std::uint32_t i) const;

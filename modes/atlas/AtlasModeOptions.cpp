@@ -28,6 +28,8 @@ AtlasModeOptions atlasModeOptions(const Settings& s) {
     o.firstShot = s.getString(M::kFirstShot);
     o.emitterPoints = uint32Of(M::kEmitterPoints);
     o.emitterShadowResolution = uint32Of(M::kEmitterShadowResolution);
+    o.environmentShots = uint32Of(M::kEnvironmentShots);
+    o.environmentShadowResolution = uint32Of(M::kEnvironmentShadowResolution);
     return o;
 }
 

@@ -32,6 +32,8 @@ struct AtlasModeOptions {
     std::string firstShot;                 // first_shot: auto | on | off
     std::uint32_t emitterPoints = 0;       // emitter_points
     std::uint32_t emitterShadowResolution = 0;
+    std::uint32_t environmentShots = 0;    // environment_shots: the environment's shot directions per direction
+    std::uint32_t environmentShadowResolution = 0; // environment_shadow_resolution: their depth maps' side
 
     // The scale of the direct atlas's light in the sender: none when bounce-by-bounce transfer
     // stops at one segment (max_segments = 1: emitters seen only).

@@ -51,10 +51,18 @@ std::vector<ParamSpec> AtlasMode::parameters() {
          "(j^k from its first direction) estimates are summed apart (0: one estimate; interleaved transfer only)",
          0, 1 << 24, {}},
         {kFirstShot, std::string("auto"), "",
-         "area emitters' direct light by emitter points into the direct atlas every direction (radiosity's first shot; "
-         "gpu/EmitterPointPass.h), the exchange then carrying reflected light only; it needs interleaved transfer, no "
-         "delay_indirect and no glossy transport: auto = on where those hold, on = refuse settings that break them",
+         "the area emitters' and the environment's direct light into the direct atlas every direction (radiosity's "
+         "first shot: emitter points, gpu/EmitterPointPass.h, and environment_shots directional shadow maps), the "
+         "exchange then carrying reflected light only; it needs interleaved transfer, no delay_indirect and no glossy "
+         "transport: auto = on where those hold, on = refuse settings that break them",
          0, 0, {"auto", "on", "off"}},
+        {kEnvironmentShots, std::int64_t{4}, "directions",
+         "the first shot's environment directions per direction, drawn by the environment's importance, each an "
+         "orthographic depth map (a directional shadow map) lighting every texel's sample points; 0: the exchange's "
+         "list ends carry the environment",
+         0, 256, {}},
+        {kEnvironmentShadowResolution, std::int64_t{512}, "texels",
+         "side of each environment shot's depth map (over the scene's bounding sphere)", 16, 8192, {}},
         {kMemoryCap, std::int64_t{0}, "MiB",
          "node storage limit of the bundle pool (0: half the largest device-local heap); a direction that needs more is "
          "refused",
@@ -83,17 +91,26 @@ PassPlan AtlasMode::plan(const Scene& scene) const {
     p.add("bundle-sort", "bundle sort", true, "always", "depth order: consecutive hits of a list see each other");
     const FirstShotChoice choice = firstShotChoice(scene);
     const bool shot = choice.runs;
+    std::string shotWhat;
+    if (choice.area) {
+        shotWhat = std::to_string(o.emitterPoints) + " emitter point(s) per direction, a " +
+                   std::to_string(o.emitterShadowResolution) + "^2 cube each";
+    }
+    if (choice.environment) {
+        shotWhat += (shotWhat.empty() ? "" : "; ") + std::to_string(o.environmentShots) +
+                    " environment direction(s) per direction by its importance, a " +
+                    std::to_string(o.environmentShadowResolution) + "^2 depth map each";
+    }
     p.add(kPassFirstShot, "first shot", shot, choice.code,
-          shot ? std::to_string(o.emitterPoints) + " emitter point(s) per direction, a " +
-                     std::to_string(o.emitterShadowResolution) +
-                     "^2 cube each, their light averaged over each texel's sample points into the direct atlas"
-               : choice.why);
+          shot ? shotWhat + ": their light averaged over each texel's sample points into the direct atlas" : choice.why);
     std::string exchange = shot ? "consecutive hits exchange reflected radiance both ways (sender = direct + mean)"
                                 : "consecutive hits exchange radiance both ways (interleaved: sender = emission + mean)";
     exchange += !f.emissiveMeshes ? "; no emissive meshes"
                 : shot            ? "; the emitters' light was shot (first shot), they send what they reflect"
                                   : "; emitters are the source";
-    exchange += f.environment ? "; environment at list ends" : "; no environment: list ends receive nothing";
+    exchange += !f.environment        ? "; no environment: list ends receive nothing"
+                : choice.environment ? "; the environment's light was shot: list ends receive nothing"
+                                     : "; environment at list ends";
     p.add("exchange", "exchange", true, o.bounce ? "transfer-bounce" : "transfer-interleaved", exchange);
     p.add("update", "update", true, "always",
           "received radiance into compensated sums, only for the texel sides the direction touched (a list the "

@@ -5,10 +5,12 @@
 // by area), the irradiance this iteration's emitter points give each side of the surface
 // (gpu/EmitterPointLight.glsl), as the direct pass does for point lights:
 //   L_shot(T, side) = albedo_T / pi * sum_s w_s E_points(s, side) / sum_s w_s,
-// adds it to the side's running sum, and writes the direct atlas (point/spot part + the sum's
-// mean over the iterations so far, an unbiased estimate of the emitters' direct light) and the
-// sender record's constant part (the same, with no emission: the exchange then carries reflected
-// light only, the emitters' direct light having been shot).
+// adds it to the side's running sum (which the environment's shot, environment_shot.comp.glsl, has
+// added this iteration's environment light to before), and writes the direct atlas (point/spot part
+// + the sum's mean over the iterations so far, an unbiased estimate of the emitters' and the
+// environment's direct light) and the sender record's constant part (the same, with no emission:
+// the exchange then carries reflected light only, the direct light having been shot). Without
+// area emitters there are no points and only the sum's mean is written.
 #include "modes/atlas/AtlasBuffers.glsl"
 #define BL_SHADOW_SET kAtlasFirstShotSet
 #define BL_SHADOW_BINDING kAtlasFirstShotBindingMaps

@@ -1,0 +1,62 @@
+// Light from this iteration's environment directions (core/bundle/EnvironmentShadowPass.h;
+// shaders/shared/EnvironmentShadows.h has the estimator), at x on the side of n. Define
+// BL_ENVIRONMENT_SHADOWS_SET, BL_ENVIRONMENT_SHADOWS_BINDING (the GpuEnvironmentShadow buffer) and
+// BL_ENVIRONMENT_SHADOW_MAPS_BINDING (their depth maps, an r32f 2D array) first.
+//
+// Visibility as skylight's depth_map: x tests the map at its pixel's centre, which box-filters the
+// visibility over the pixel (the mean is kept except in strips half a pixel diagonal wide beside
+// contact lines, where light is lost), the map's surface counting from blBundleSurfaceEpsilon past
+// x's own plane whatever its winding (bundle/Traversal.glsl).
+#ifndef BL_GPU_ENVIRONMENT_SHADOW_LIGHT_GLSL
+#define BL_GPU_ENVIRONMENT_SHADOW_LIGHT_GLSL
+#include "bundle/Traversal.glsl"
+#include "shared/Brdf.h"
+#include "shared/EnvironmentShadows.h"
+
+layout(set = BL_ENVIRONMENT_SHADOWS_SET, binding = BL_ENVIRONMENT_SHADOWS_BINDING) readonly buffer BlEnvironmentShadowBlock {
+    GpuEnvironmentShadowHeader blEnvironmentShadowHeader;
+    GpuEnvironmentShadow blEnvironmentShadows[];
+};
+layout(set = BL_ENVIRONMENT_SHADOWS_SET, binding = BL_ENVIRONMENT_SHADOW_MAPS_BINDING, r32f) uniform readonly image2DArray
+    blEnvironmentShadowMaps;
+
+// Whether x (normal n of either sign, cosine = n . omega_k) sees the environment along direction k.
+// A point outside the map's frame (which covers the scene's bounding sphere) has nothing in front.
+bool blEnvironmentShadowVisible(uint k, vec3 x, vec3 n, float cosine) {
+    BundleFrame frame = blEnvironmentShadows[k].frame;
+    ivec2 pixel;
+    float depth;
+    if (!blBundlePixel(frame, x, pixel, depth)) {
+        return true;
+    }
+    return !(imageLoad(blEnvironmentShadowMaps, ivec3(pixel, int(k))).r >
+             blBundleSurfaceDepth(frame, pixel, x, depth, n) + blBundleSurfaceEpsilon(frame, cosine));
+}
+
+// The estimate's sum over the directions on n's side, sum_k g_k V_k (n . omega_k) weight_k, with
+// g = f(x, omega_k, wo) where `reflect`, else 1 (the irradiance at x on n's side, for a caller that
+// applies its own reflectance: atlas texels, albedo / pi).
+vec3 blEnvironmentShadowSum(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, bool reflect) {
+    vec3 sum = vec3(0.0);
+    for (uint k = 0u; k < blEnvironmentShadowHeader.count; ++k) {
+        vec3 omega = blEnvironmentShadows[k].frame.direction;
+        float cosine = dot(n, omega);
+        if (cosine <= 0.0 || !blEnvironmentShadowVisible(k, x, n, cosine)) {
+            continue;
+        }
+        vec3 f = reflect ? blEvalBrdf(m, albedo, n, omega, wo) : vec3(1.0);
+        sum += f * blEnvironmentShadows[k].weight * cosine;
+    }
+    return sum;
+}
+
+vec3 blEnvironmentShadowIrradiance(vec3 x, vec3 n) {
+    GpuMaterial unused = GpuMaterial(vec3(0.0), 0u, vec3(0.0), 0.0, 0.0, 0u, 0u, 0u);
+    return blEnvironmentShadowSum(x, n, unused, vec3(0.0), n, false);
+}
+
+vec3 blEnvironmentShadowLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
+    return blEnvironmentShadowSum(x, n, m, albedo, wo, true);
+}
+
+#endif
