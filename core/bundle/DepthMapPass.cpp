@@ -20,7 +20,9 @@ DepthMapPass::DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, s
     : mScene(&scene), mResolution(resolution), mArray(layers > 0) {
     VkDevice device = ctx.device();
     mMap = vk::GpuImage(ctx, {resolution, resolution, std::max(layers, 1u), kMapFormat,
-                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, mArray});
+                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+                                  VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                              mArray});
     mDepth = vk::GpuImage(ctx, {resolution, resolution, 1, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
     mFrame = gpu::RecordedUniform<shader::BundleFrame>(ctx);
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -37,6 +39,16 @@ DepthMapPass::DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, s
     desc.depthCompare = VK_COMPARE_OP_GREATER; // largest depth along omega: nearest to the light
     desc.layout = mPipelineLayout.get();
     mPipeline = vk::makeGraphicsPipeline(device, desc);
+
+    // Every layer starts as "nothing in the way" (-inf) in GENERAL, so a layer not rendered in an
+    // iteration (a direction without light) is still valid to bind, and each record changes the
+    // layout of its own layer only.
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        vk::transitionImage(cmd, mMap.get(), vk::ImageTransition{});
+        const VkClearColorValue nothing{{-std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f}};
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
+        vkCmdClearColorImage(cmd, mMap.get(), VK_IMAGE_LAYOUT_GENERAL, &nothing, 1, &all);
+    });
 }
 
 void DepthMapPass::record(VkCommandBuffer cmd, const shader::BundleFrame& frame, double time, vk::GpuTimer* timer,

@@ -3,7 +3,10 @@
 #include "base/Error.h"
 #include "bundle/BundleFrame.h"
 
+#include <shared/Sampling.h>
+
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace bl {
@@ -25,17 +28,39 @@ VkDeviceSize EnvironmentShadowPass::bytesFor(std::uint32_t count, std::uint32_t 
 
 EnvironmentShadowPass::EnvironmentShadowPass(const vk::Context& ctx, const gpu::GpuScene& gpuScene, const Scene& scene,
                                              std::uint32_t count, std::uint32_t resolution)
-    : mRequested(count), mResolution(resolution), mBounds(scene.bounds()), mRadiance(scene.environment, false),
-      mImportance(scene.environment, true), mMaps(ctx, gpuScene, resolution, std::max(count, 1u)),
-      mBuffer(ctx, sizeof(shader::GpuEnvironmentShadowHeader) + sizeof(shader::GpuEnvironmentShadow) * std::max(count, 1u),
+    : mRequested(scene.environment.present ? count : 0u), mResolution(mRequested > 0 ? resolution : 1u),
+      mBounds(scene.bounds()), mRadiance(scene.environment, false), mImportance(scene.environment, true),
+      mMaps(ctx, gpuScene, mResolution, std::max(mRequested, 1u)),
+      mBuffer(ctx, sizeof(shader::GpuEnvironmentShadowHeader) + sizeof(shader::GpuEnvironmentShadow) * std::max(mRequested, 1u),
               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload) {
-    if (!scene.environment.present || count == 0) {
-        throw Error("EnvironmentShadowPass: needs an environment and at least one direction");
+    if (mRequested > 0) {
+        // q~'s normalization: the integral of lum(L_e) over the sphere by the midpoint rule on a
+        // latitude-longitude grid (any positive constant keeps the MIS weights a partition of
+        // unity; this one makes q~ close to q).
+        constexpr int kRows = 256, kColumns = 512;
+        constexpr double kPi = 3.14159265358979323846;
+        double integral = 0.0;
+        for (int r = 0; r < kRows; ++r) {
+            const double theta = kPi * (r + 0.5) / kRows;
+            const double cell = (kPi / kRows) * (2.0 * kPi / kColumns) * std::sin(theta);
+            for (int c = 0; c < kColumns; ++c) {
+                const double phi = 2.0 * kPi * (c + 0.5) / kColumns;
+                const glm::vec3 d(float(std::sin(theta) * std::cos(phi)), float(std::cos(theta)),
+                                  float(std::sin(theta) * std::sin(phi)));
+                integral += double(shader::blLuminance(mRadiance.radiance(d))) * cell;
+            }
+        }
+        const double p = 1.0 / (1.0 + double(kUniformOffset));
+        mLuminanceScale = integral > 0.0 ? float(p / integral) : 0.0f;
+        mUniformDensity = float((integral > 0.0 ? 1.0 - p : 1.0) / (4.0 * kPi));
     }
     upload(); // a valid header (no directions) until the first prepare()
 }
 
 void EnvironmentShadowPass::prepare(std::uint64_t seed, std::uint32_t iteration) {
+    if (off()) {
+        return;
+    }
     const auto folded = static_cast<std::uint32_t>(seed ^ (seed >> 32)) ^ kSeedKey;
     if (!mDirections || folded != mSeed) {
         mSeed = folded;
@@ -62,6 +87,9 @@ void EnvironmentShadowPass::prepare(std::uint64_t seed, std::uint32_t iteration)
 void EnvironmentShadowPass::upload() {
     shader::GpuEnvironmentShadowHeader header{};
     header.count = count();
+    header.requested = mRequested;
+    header.luminanceScale = mLuminanceScale;
+    header.uniformDensity = mUniformDensity;
     auto* bytes = static_cast<std::byte*>(mBuffer.data());
     std::memcpy(bytes, &header, sizeof(header));
     if (!mShadows.empty()) {

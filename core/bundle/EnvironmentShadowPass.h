@@ -22,8 +22,8 @@ namespace bl {
 
 class EnvironmentShadowPass {
 public:
-    // `count` directions per iteration (at least 1), depth maps of `resolution`^2 texels. The scene
-    // must have an environment.
+    // `count` directions per iteration, depth maps of `resolution`^2 texels; 0 or a scene without
+    // an environment: the pass is off (header count 0, one-layer placeholder maps to bind).
     EnvironmentShadowPass(const vk::Context& ctx, const gpu::GpuScene& gpuScene, const Scene& scene, std::uint32_t count,
                           std::uint32_t resolution);
 
@@ -36,6 +36,7 @@ public:
     // "environment maps").
     void record(VkCommandBuffer cmd, double time, vk::GpuTimer* timer);
 
+    bool off() const { return mRequested == 0; }
     // Directions in the buffer: those of the last prepare() whose light is not zero.
     std::uint32_t count() const { return static_cast<std::uint32_t>(mShadows.size()); }
     std::uint32_t resolution() const { return mResolution; }
@@ -48,6 +49,7 @@ private:
 
     std::uint32_t mRequested;
     std::uint32_t mResolution;
+    float mLuminanceScale = 0.0f, mUniformDensity = 0.0f; // q~ (EnvironmentShadows.h)
     Bounds mBounds;
     EnvironmentLight mRadiance;   // L_e, as the modes look it up
     EnvironmentLight mImportance; // luminance-sampled, for the directions

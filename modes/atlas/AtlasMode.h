@@ -119,6 +119,7 @@
 #pragma once
 
 #include "atlas/TexelRadiance.h"
+#include "modes/EnvironmentShadowParameters.h"
 #include "modes/Mode.h"
 #include "modes/atlas/AtlasModeOptions.h"
 
@@ -153,8 +154,8 @@ public:
     static constexpr const char* kFirstShot = "first_shot";
     static constexpr const char* kEmitterPoints = "emitter_points";
     static constexpr const char* kEmitterShadowResolution = "emitter_shadow_resolution";
-    static constexpr const char* kEnvironmentShots = "environment_shots";
-    static constexpr const char* kEnvironmentShadowResolution = "environment_shadow_resolution";
+    static constexpr const char* kEnvironmentShots = kEnvironmentShotsKey;
+    static constexpr const char* kEnvironmentShadowResolution = kEnvironmentShadowResolutionKey;
 
     // The ids of the plan's passes that setScene() and iterate() execute (AtlasPlan.cpp).
     static constexpr const char* kPassFirstShot = "first-shot";

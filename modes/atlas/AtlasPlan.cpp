@@ -2,6 +2,7 @@
 #include "modes/atlas/AtlasMode.h"
 
 #include "modes/EmitterPointParameters.h"
+#include "modes/EnvironmentShadowParameters.h"
 #include "scene/Scene.h"
 
 namespace bl {
@@ -56,13 +57,6 @@ std::vector<ParamSpec> AtlasMode::parameters() {
          "exchange then carrying reflected light only; it needs interleaved transfer, no delay_indirect and no glossy "
          "transport: auto = on where those hold, on = refuse settings that break them",
          0, 0, {"auto", "on", "off"}},
-        {kEnvironmentShots, std::int64_t{4}, "directions",
-         "the first shot's environment directions per direction, drawn by the environment's importance, each an "
-         "orthographic depth map (a directional shadow map) lighting every texel's sample points; 0: the exchange's "
-         "list ends carry the environment",
-         0, 256, {}},
-        {kEnvironmentShadowResolution, std::int64_t{512}, "texels",
-         "side of each environment shot's depth map (over the scene's bounding sphere)", 16, 8192, {}},
         {kMemoryCap, std::int64_t{0}, "MiB",
          "node storage limit of the bundle pool (0: half the largest device-local heap); a direction that needs more is "
          "refused",
@@ -73,8 +67,12 @@ std::vector<ParamSpec> AtlasMode::parameters() {
          "skip the first rebuilds",
          1, 1 << 16, {}},
     };
-    return withEmitterPointParameters(std::move(params), "direction",
-                                      "the first shot (first_shot), the area emitters' direct light", 1);
+    params = withEmitterPointParameters(std::move(params), "direction",
+                                        "the first shot (first_shot), the area emitters' direct light", 1);
+    return withEnvironmentShadowParameters(
+        std::move(params), "direction",
+        "the first shot (first_shot), the environment's direct light at every texel's sample points; 0: the exchange's "
+        "list ends carry the environment");
 }
 
 PassPlan AtlasMode::plan(const Scene& scene) const {

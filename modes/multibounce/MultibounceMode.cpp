@@ -6,10 +6,12 @@
 #include "bundle/DirectionSampler.h"
 #include "bundle/FittingBuild.h"
 #include "gpu/CameraPass.h"
+#include "bundle/EnvironmentShadowPass.h"
 #include "gpu/EmitterPointPass.h"
 #include "gpu/PackedTextures.h"
 #include "gpu/ShadowCubePass.h"
 #include "modes/EmitterPointParameters.h"
+#include "modes/EnvironmentShadowParameters.h"
 #include "modes/LightShadowPass.h"
 #include "modes/multibounce/SurfacePoints.h"
 #include "scene/Scene.h"
@@ -64,12 +66,16 @@ std::vector<ParamSpec> MultibounceMode::parameters() {
          "centre: the splat's centre texel over the whole splat (for comparison)",
          0, 0, {"corners", "centre"}},
         {kEmitterSampling, std::string("mis"), "",
-         "area emitters after a bounce: mis (bundle hits and emitter points by the balance heuristic), bundles "
-         "(bundle hits alone, as [TO12]), points (emitter points alone)",
+         "area emitters and the environment after a bounce: mis (bundle hits and escapes, and emitter points and "
+         "environment directions, by the balance heuristic), bundles (bundle hits and escapes alone, as [TO12]), points "
+         "(emitter points and environment directions alone)",
          0, 0, {"mis", "bundles", "points"}},
     };
-    return withEmitterPointParameters(std::move(params), "iteration",
-                                      "next-event estimation at every path vertex (emitter_sampling mis, points)", 1);
+    params = withEmitterPointParameters(std::move(params), "iteration",
+                                        "next-event estimation at every path vertex (emitter_sampling mis, points)", 1);
+    return withEnvironmentShadowParameters(std::move(params), "iteration",
+                                           "next-event estimation at every path vertex (emitter_sampling mis, points); "
+                                           "0: escaping paths alone");
 }
 
 std::unique_ptr<Mode> MultibounceMode::create(const Settings& settings) {
@@ -83,6 +89,7 @@ MultibounceMode::MultibounceMode(const Settings& settings) : mSettings(settings)
 struct MultibounceLights {
     std::unique_ptr<gpu::ShadowCubePass> shadows;
     std::unique_ptr<gpu::EmitterPointPass> emitterPoints;
+    std::unique_ptr<EnvironmentShadowPass> environmentShadows; // off (placeholders) unless the plan runs it
     vk::Buffer emitters;
     std::uint32_t emitterCount = 0;
 };
@@ -150,8 +157,21 @@ PassPlan MultibounceMode::plan(const Scene& scene) const {
                : sampling == "mis"  ? "; emitters hit (front faces), weighed against the emitter points (MIS)"
                : sampling == "points" ? "; emitters seen from the camera only, the emitter points light the rest"
                                       : "; emitters hit (front faces)"));
+    const bool shadows = f.environment && o.environmentShotCount() > 0;
+    p.add(kPassEnvironmentShadows, "environment shadows", shadows,
+          !f.environment ? "no-environment" : shadows ? "emitter-sampling-" + sampling
+          : o.environmentShots == 0 ? "environment-shots-0" : "emitter-sampling-bundles",
+          shadows ? std::to_string(o.environmentShots) + " direction(s) toward the environment per iteration, by its "
+                        "importance, a " + std::to_string(o.environmentShadowResolution) +
+                        "^2 depth map each, at every path vertex"
+          : !f.environment ? "no environment"
+          : o.environmentShots == 0 ? "environment_shots = 0: the environment only where paths escape"
+                                    : "emitter_sampling = bundles: the environment only where paths escape");
     p.add(kPassEnvironment, "environment", f.environment, f.environment ? "escaping-paths" : "no-environment",
-          f.environment ? "escaping paths take the environment's radiance" : "no environment: escaping paths end");
+          !f.environment ? "no environment: escaping paths end"
+          : !shadows    ? "escaping paths take the environment's radiance"
+          : sampling == "points" ? "escaping paths end: the environment's directions light every vertex"
+                                 : "escaping paths take the environment's radiance, weighed against its directions (MIS)");
     std::string textures = "no textures: no UV, gradient or texture work (the packed texture buffer holds the decode "
                            "table only)";
     if (f.textured) {
@@ -181,6 +201,10 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
                                  shadowSide * shadowSide * 4 * (6 * scene.lights.size() + 1) +
                                  (mPlan.runs(kPassEmitterPoints)
                                       ? gpu::EmitterPointPass::bytesFor(mOptions.emitterPointCount(), mOptions.emitterShadowResolution)
+                                      : 0) +
+                                 (mPlan.runs(kPassEnvironmentShadows)
+                                      ? EnvironmentShadowPass::bytesFor(mOptions.environmentShots,
+                                                                        mOptions.environmentShadowResolution)
                                       : 0),
                              "multibounce at " + std::to_string(width) + "x" + std::to_string(height));
     auto g = std::make_unique<Gpu>();
@@ -190,6 +214,9 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->lights.emitterPoints = std::make_unique<gpu::EmitterPointPass>(
         *ctx, *g->scene, scene, mPlan.runs(kPassEmitterPoints) ? mOptions.emitterPointCount() : 0u,
         mOptions.emitterShadowResolution);
+    g->lights.environmentShadows = std::make_unique<EnvironmentShadowPass>(
+        *ctx, *g->scene, scene, mPlan.runs(kPassEnvironmentShadows) ? mOptions.environmentShots : 0u,
+        mOptions.environmentShadowResolution);
     g->bundles.bounds = scene.bounds();
 
     const std::uint32_t slots = mOptions.bundleCount;
@@ -240,7 +267,11 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
                  vk::Bound::storageBuffer(shader::kMultibounceBindingSplats, splats),
                  vk::Bound::storageBuffer(shader::kMultibounceBindingTextures, g->bundles.textures->buffer()),
                  vk::Bound::storageBuffer(shader::kMultibounceBindingEmitterPoints, g->lights.emitterPoints->buffer()),
-                 vk::Bound::storageImage(shader::kMultibounceBindingEmitterShadowMaps, g->lights.emitterPoints->maps().view())});
+                 vk::Bound::storageImage(shader::kMultibounceBindingEmitterShadowMaps, g->lights.emitterPoints->maps().view()),
+                 vk::Bound::storageBuffer(shader::kMultibounceBindingEnvironmentShadows,
+                                          g->lights.environmentShadows->buffer()),
+                 vk::Bound::storageImage(shader::kMultibounceBindingEnvironmentShadowMaps,
+                                         g->lights.environmentShadows->maps().view())});
     g->paths = vk::ComputePass<shader::MultibouncePush>(device, kSpv_modes_multibounce_paths_comp,
                                                         {g->camera->setLayout(), g->bound.layout()});
     mGpu = std::move(g);
@@ -299,6 +330,7 @@ void MultibounceMode::iterate(const IterationInfo& info) {
     const gpu::CameraSample sample = g.camera->sample(mIterations, true, info.time, info.seed);
     const bool renderShadows = mPlan.runs(kPassLightShadowCubes) && g.lights.shadows->refreshFor(*mContext, *g.scene, info.time);
     g.lights.emitterPoints->prepare(info.seed, mIterations, info.time);
+    g.lights.environmentShadows->prepare(info.seed, mIterations);
     shader::MultibouncePush push{};
     push.pool = g.bundles.pool->view();
     push.width = width;
@@ -327,6 +359,7 @@ void MultibounceMode::iterate(const IterationInfo& info) {
             g.lights.shadows->record(cmd, info.time, &g.timer);
         }
         g.lights.emitterPoints->record(cmd, info.time, &g.timer);
+        g.lights.environmentShadows->record(cmd, info.time, &g.timer);
         g.camera->record(cmd, sample, &g.timer);
         const VkDescriptorSet sets[] = {g.camera->set(), g.bound.set()};
         g.timer.timed(cmd, "paths", [&] {

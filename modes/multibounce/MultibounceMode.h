@@ -99,6 +99,7 @@ public:
     static constexpr const char* kPassSurfacePoints = "surface-points";
     static constexpr const char* kPassEmitterPoints = "emitter-points";
     static constexpr const char* kPassEnvironment = "environment";
+    static constexpr const char* kPassEnvironmentShadows = "environment-shadows";
     static constexpr const char* kPassTextures = "textures";
 
     static std::vector<ParamSpec> parameters();

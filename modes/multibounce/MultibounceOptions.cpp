@@ -1,5 +1,7 @@
 #include "modes/multibounce/MultibounceOptions.h"
 
+#include "modes/EnvironmentShadowParameters.h"
+
 #include "modes/multibounce/MultibounceMode.h"
 
 namespace bl {
@@ -22,6 +24,8 @@ MultibounceOptions multibounceOptions(const Settings& s) {
     o.splatUvCentre = s.getString(M::kSplatUv) == "centre";
     o.emitterSampling = s.getString(M::kEmitterSampling);
     o.emitterPoints = uint32Of(M::kEmitterPoints);
+    o.environmentShots = uint32Of(kEnvironmentShotsKey);
+    o.environmentShadowResolution = uint32Of(kEnvironmentShadowResolutionKey);
     o.emitterShadowResolution = uint32Of(M::kEmitterShadowResolution);
     return o;
 }

@@ -26,9 +26,13 @@ struct MultibounceOptions {
     std::string emitterSampling;              // emitter_sampling: bundles | points | mis
     std::uint32_t emitterPoints = 0;          // emitter_points
     std::uint32_t emitterShadowResolution = 0;
+    std::uint32_t environmentShots = 0;       // environment_shots: directions toward the environment per iteration
+    std::uint32_t environmentShadowResolution = 0;
 
     // Emitter points per iteration: 0 with emitter_sampling = bundles.
     std::uint32_t emitterPointCount() const { return emitterSampling == "bundles" ? 0u : emitterPoints; }
+    // Environment directions per iteration: 0 with emitter_sampling = bundles.
+    std::uint32_t environmentShotCount() const { return emitterSampling == "bundles" ? 0u : environmentShots; }
     bool emitterPointsOnly() const { return emitterSampling == "points"; }
 };
 

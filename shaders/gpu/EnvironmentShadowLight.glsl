@@ -1,7 +1,9 @@
 // Light from this iteration's environment directions (core/bundle/EnvironmentShadowPass.h;
 // shaders/shared/EnvironmentShadows.h has the estimator), at x on the side of n. Define
 // BL_ENVIRONMENT_SHADOWS_SET, BL_ENVIRONMENT_SHADOWS_BINDING (the GpuEnvironmentShadow buffer) and
-// BL_ENVIRONMENT_SHADOW_MAPS_BINDING (their depth maps, an r32f 2D array) first.
+// BL_ENVIRONMENT_SHADOW_MAPS_BINDING (their depth maps, an r32f 2D array) first; for the MIS
+// variant also BL_ENVIRONMENT_SHADOW_RADIANCE(d), the caller's own lookup of L_e(d), which its
+// escaping paths read too (the weights are then a partition of unity to the last bit).
 //
 // Visibility as skylight's depth_map: x tests the map at its pixel's centre, which box-filters the
 // visibility over the pixel (the mean is kept except in strips half a pixel diagonal wide beside
@@ -12,6 +14,7 @@
 #include "bundle/Traversal.glsl"
 #include "shared/Brdf.h"
 #include "shared/EnvironmentShadows.h"
+#include "shared/Sampling.h"
 
 layout(set = BL_ENVIRONMENT_SHADOWS_SET, binding = BL_ENVIRONMENT_SHADOWS_BINDING) readonly buffer BlEnvironmentShadowBlock {
     GpuEnvironmentShadowHeader blEnvironmentShadowHeader;
@@ -58,5 +61,42 @@ vec3 blEnvironmentShadowIrradiance(vec3 x, vec3 n) {
 vec3 blEnvironmentShadowLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
     return blEnvironmentShadowSum(x, n, m, albedo, wo, true);
 }
+
+// The balance heuristic against escaping paths along directions of solid-angle density
+// directionPdf (shared/EnvironmentShadows.h: q~). The directions' K samples have the count-weighted
+// density K q~(d); an escape along d with radiance L_e(d) takes the weight below, the rest goes to
+// the directions. directionPdf = 0: the directions alone (escapes weigh 0 while the pass is on);
+// pass off (requested = 0): escapes alone.
+float blEnvironmentShadowDensity(vec3 radiance) {
+    return blEnvironmentShadowHeader.luminanceScale * blLuminance(radiance) + blEnvironmentShadowHeader.uniformDensity;
+}
+
+float blEnvironmentEscapeWeight(vec3 radiance, float directionPdf) {
+    uint requested = blEnvironmentShadowHeader.requested;
+    if (requested == 0u) {
+        return 1.0;
+    }
+    float directions = float(requested) * blEnvironmentShadowDensity(radiance);
+    return directionPdf > 0.0 ? directionPdf / (directionPdf + directions) : 0.0;
+}
+
+#ifdef BL_ENVIRONMENT_SHADOW_RADIANCE
+// blEnvironmentShadowLight with each direction weighted K q~ / (K q~ + directionPdf) against escapes.
+vec3 blEnvironmentShadowLightMis(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float directionPdf) {
+    vec3 sum = vec3(0.0);
+    float requested = float(blEnvironmentShadowHeader.requested);
+    for (uint k = 0u; k < blEnvironmentShadowHeader.count; ++k) {
+        vec3 omega = blEnvironmentShadows[k].frame.direction;
+        float cosine = dot(n, omega);
+        if (cosine <= 0.0 || !blEnvironmentShadowVisible(k, x, n, cosine)) {
+            continue;
+        }
+        float directions = requested * blEnvironmentShadowDensity(BL_ENVIRONMENT_SHADOW_RADIANCE(omega));
+        float weight = directions / (directions + directionPdf);
+        sum += blEvalBrdf(m, albedo, n, omega, wo) * blEnvironmentShadows[k].weight * (cosine * weight);
+    }
+    return sum;
+}
+#endif
 
 #endif

@@ -11,12 +11,19 @@
 
 BL_NAMESPACE_BEGIN
 
+// Multiple importance sampling against a strategy that reaches the environment by escaping along a
+// direction of density p_d (multibounce's bundles): the balance heuristic's weights need the
+// directions' density at any direction, on the GPU. They stay a partition of unity, and the
+// estimate unbiased, with any positive stand-in for q evaluated the same way on both sides, so the
+// shaders use q~(d) = luminanceScale lum(L_e(d)) + uniformDensity, the sampler's mixture (luminance
+// + L_o, DirectionSampler) with the map's own bilinear radiance in place of its piecewise-constant
+// table (shaders/gpu/EnvironmentShadowLight.glsl).
 // The buffer EnvironmentShadowPass uploads: this header, then `count` GpuEnvironmentShadow.
 struct GpuEnvironmentShadowHeader {
-    uint count; // directions this iteration (0: none; the modes' estimates then leave them out)
-    uint pad0;
-    uint pad1;
-    uint pad2;
+    uint count;           // directions this iteration with light (0: none; the estimates leave them out)
+    uint requested;       // K: directions drawn per iteration (0: the pass is off), the MIS count
+    float luminanceScale; // q~'s luminance factor: P / integral of lum(L_e) over the sphere
+    float uniformDensity; // q~'s uniform part: (1 - P) / (4 pi)
 };
 BL_STATIC_ASSERT(sizeof(GpuEnvironmentShadowHeader) == 16, "GpuEnvironmentShadowHeader layout");
 

@@ -17,6 +17,8 @@ BL_CONST uint kMultibounceBindingSplats = 4u;     // storage BundleSplat[] (impe
 BL_CONST uint kMultibounceBindingTextures = 5u;   // storage uint[]: packed albedo textures (shared/PackedTextures.h)
 BL_CONST uint kMultibounceBindingEmitterPoints = 6u;     // storage GpuEmitterPointHeader + GpuEmitterPoint[]
 BL_CONST uint kMultibounceBindingEmitterShadowMaps = 7u; // storage image 2D array (r32f), 6 layers per emitter point
+BL_CONST uint kMultibounceBindingEnvironmentShadows = 8u;    // storage GpuEnvironmentShadowHeader + GpuEnvironmentShadow[]
+BL_CONST uint kMultibounceBindingEnvironmentShadowMaps = 9u; // storage image 2D array (r32f), a depth map per direction
 
 // MultibouncePush::flags.
 BL_CONST uint kMultibounceEnvironment = 1u; // the scene has an environment: escaping paths gather it
@@ -25,8 +27,9 @@ BL_CONST uint kMultibounceSplatCentreUv = 4u; // imperfect bundles: the UV of th
                                               // splat (splat_uv = centre, for comparison), not the UV at the hit
 BL_CONST uint kMultibounceDistinctBundles = 8u; // a path's bundles are drawn without replacement
                                                 // (independent random directions: MultibounceBundleWindow)
-// emitter_sampling = points: the emitter points alone light each vertex (an emitter a bundle meets
-// after a bounce weighs 0); without this flag and with points, both strategies by MIS.
+// emitter_sampling = points: the emitter points (and the environment's directions) alone light each
+// vertex (an emitter a bundle meets after a bounce, and the sky a path escapes to, weigh 0); without
+// this flag and with points, both strategies by MIS.
 BL_CONST uint kMultibounceEmitterPointsOnly = 16u;
 
 // Emission of the triangles of one draw: triangle id t belongs to the last entry with

@@ -11,9 +11,11 @@
 // any sequence when K <= 8) the bundles are drawn without replacement along a path (blMultibouncePickBundle): d is never the
 // direction the path arrived along, and a path that has used all K <= 8 bundles ends. At every vertex: emission when the path meets an emitter's front face, point/spot light
 // by cube shadow maps, the area emitters by this iteration's emitter points (gpu/EmitterPointLight.glsl),
-// the environment when the path escapes. Emitters are reached two ways after a bounce, by a bundle
-// and by an emitter point: the balance heuristic weighs the two (the bundle's density p_r(d) on
-// the hemisphere against M p_A(y)), and gives the points the whole path where no bundle is left.
+// the environment by this iteration's environment directions (gpu/EnvironmentShadowLight.glsl) and
+// when the path escapes. Emitters are reached two ways after a bounce, by a bundle and by an
+// emitter point: the balance heuristic weighs the two (the bundle's density p_r(d) on the
+// hemisphere against M p_A(y)), and gives the points the whole path where no bundle is left; the
+// environment likewise by an escape and by its directions (p_r(d) against K q~(d)).
 // Weights are f cos / p_r; Russian roulette after push.rrSegments segments. Textured albedo at every
 // vertex from the packed texture buffer (gpu/PackedTextureLookup.glsl: no descriptor indexing),
 // at the payload's UV (perfect bundles) or the splat's UV at the hit (imperfect bundles).
@@ -34,6 +36,12 @@
 #define BL_EMITTER_POINTS_SET kMultibounceSet
 #define BL_EMITTER_POINTS_BINDING kMultibounceBindingEmitterPoints
 #include "gpu/EmitterPointLight.glsl"
+#define BL_ENVIRONMENT_SHADOWS_SET kMultibounceSet
+#define BL_ENVIRONMENT_SHADOWS_BINDING kMultibounceBindingEnvironmentShadows
+#define BL_ENVIRONMENT_SHADOW_MAPS_BINDING kMultibounceBindingEnvironmentShadowMaps
+#define BL_ENVIRONMENT_SHADOW_RADIANCE(d) environmentRadiance(d)
+vec3 environmentRadiance(vec3 d);
+#include "gpu/EnvironmentShadowLight.glsl"
 #define BL_PACKED_TEXTURES_SET kMultibounceSet
 #define BL_PACKED_TEXTURES_BINDING kMultibounceBindingTextures
 #include "gpu/PackedTextureLookup.glsl"
@@ -49,6 +57,11 @@ layout(set = kMultibounceSet, binding = kMultibounceBindingPoints) readonly buff
 };
 layout(set = kMultibounceSet, binding = kMultibounceBindingSplats) readonly buffer SplatBlock { BundleSplat splats[]; };
 layout(push_constant) uniform PushBlock { MultibouncePush push; };
+
+// The environment's radiance toward d, as escaping paths and the MIS weights of its directions read it.
+vec3 environmentRadiance(vec3 d) {
+    return textureLod(environment, blEnvDirectionToUv(d, push.environmentRotation), 0.0).rgb;
+}
 
 // Layer of a contribution whose path has `segments` segments (1 = emitted, 2 = direct, ...).
 uint layerOf(uint segments) { return min(segments, kPathLayerCount) - 1u; }
@@ -102,7 +115,8 @@ void tracePath(vec3 x0, uint own0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 e
         bool bundleLeft = blMultibounceBundleLeft(window, push.pool.slots);
         layers[layerOf(segments + 1u)] +=
             throughput * (directLight(x, n, m, albedo, wo) +
-                          blEmitterPointsLight(x, n, m, albedo, wo, bundleLeft ? bundlePdf : 0.0));
+                          blEmitterPointsLight(x, n, m, albedo, wo, bundleLeft ? bundlePdf : 0.0) +
+                          blEnvironmentShadowLightMis(x, n, m, albedo, wo, bundleLeft ? bundlePdf : 0.0));
 
         if (!bundleLeft) {
             break; // every one of K <= 8 bundles drawn: no direction independent of the path's is left
@@ -137,8 +151,8 @@ void tracePath(vec3 x0, uint own0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 e
         uint hit = blBundleSurfaceNearest(nodes, head, hits, true, ownId, frame, bundlePixel, x, depth, n, side, crossing);
         if (hit == kBundleNil) {
             if ((push.flags & kMultibounceEnvironment) != 0u) {
-                layers[layerOf(segments + 1u)] +=
-                    throughput * textureLod(environment, blEnvDirectionToUv(d, push.environmentRotation), 0.0).rgb;
+                vec3 radiance = environmentRadiance(d);
+                layers[layerOf(segments + 1u)] += throughput * radiance * blEnvironmentEscapeWeight(radiance, bundlePdf);
             }
             break;
         }
