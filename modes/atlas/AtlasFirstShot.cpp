@@ -8,7 +8,6 @@
 #include "vk/Commands.h"
 
 #include <modes/atlas/AtlasShared.h>
-#include <modes/atlas/environment_shot.comp.spv.h>
 #include <modes/atlas/first_shot.comp.spv.h>
 
 namespace bl {
@@ -80,49 +79,27 @@ void AtlasMode::setUpFirstShot(const Scene& scene) {
     g.direct.pointDirect = vk::makeBuffer(*mContext, std::span<const glm::vec4>(zero), kStorage);
     g.direct.shotSum = vk::makeBuffer(*mContext, std::span<const glm::vec4>(zero), kStorage);
 
+    // Without the environment's part the pass is off and binds placeholders.
+    g.direct.environmentShadows = std::make_unique<EnvironmentShadowPass>(
+        *mContext, *g.scene, scene, choice.environment ? mOptions.environmentShots : 0u,
+        mOptions.environmentShadowResolution);
+
     VkDevice device = mContext->device();
     g.direct.firstShotSet = vk::BoundSet(
-        device, {vk::Bound::storageBuffer(shader::kAtlasFirstShotBindingPoints, g.direct.emitterPoints->buffer()),
-                 vk::Bound::storageImage(shader::kAtlasFirstShotBindingMaps, g.direct.emitterPoints->maps().view()),
-                 vk::Bound::storageImage(shader::kAtlasFirstShotBindingMaps2, g.direct.emitterPoints->maps().view())});
+        device,
+        {vk::Bound::storageBuffer(shader::kAtlasFirstShotBindingPoints, g.direct.emitterPoints->buffer()),
+         vk::Bound::storageImage(shader::kAtlasFirstShotBindingMaps, g.direct.emitterPoints->maps().view()),
+         vk::Bound::storageImage(shader::kAtlasFirstShotBindingMaps2, g.direct.emitterPoints->maps().view()),
+         vk::Bound::storageBuffer(shader::kAtlasFirstShotBindingEnvironment, g.direct.environmentShadows->buffer()),
+         vk::Bound::storageImage(shader::kAtlasFirstShotBindingEnvironmentMaps, g.direct.environmentShadows->maps().view())});
     g.direct.firstShotPass = vk::ComputePass<shader::AtlasFirstShotPush>(device, kSpv_modes_atlas_first_shot_comp,
                                                                          {g.direct.firstShotSet.layout()});
-    if (!choice.environment) {
-        return;
-    }
-    g.direct.environmentShadows = std::make_unique<EnvironmentShadowPass>(
-        *mContext, *g.scene, scene, mOptions.environmentShots, mOptions.environmentShadowResolution);
-    g.direct.environmentShotSet = vk::BoundSet(
-        device,
-        {vk::Bound::storageBuffer(shader::kAtlasEnvironmentShotBindingShadows, g.direct.environmentShadows->buffer()),
-         vk::Bound::storageImage(shader::kAtlasEnvironmentShotBindingMaps, g.direct.environmentShadows->maps().view())});
-    g.direct.environmentShotPass = vk::ComputePass<shader::AtlasEnvironmentShotPush>(
-        device, kSpv_modes_atlas_environment_shot_comp, {g.direct.environmentShotSet.layout()});
-}
-
-void AtlasMode::recordEnvironmentShot(VkCommandBuffer cmd, double time) {
-    Gpu& g = *mGpu;
-    g.direct.environmentShadows->record(cmd, time, &g.timer);
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-    shader::AtlasEnvironmentShotPush push{};
-    push.samples = addressOf(*mContext, g.direct.samples);
-    push.first = addressOf(*mContext, g.direct.firstSample);
-    push.texels = addressOf(*mContext, g.link.texels);
-    push.shotSum = addressOf(*mContext, g.direct.shotSum);
-    push.texelCount = g.link.texelCount;
-    const std::uint32_t scope = g.timer.start(cmd, "environment shot");
-    g.direct.environmentShotPass.dispatch(cmd, push, vk::groupCount(g.link.texelCount, shader::kAtlasGroupSize),
-                                          g.direct.environmentShotSet.sets());
-    g.timer.stop(cmd, scope);
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }
 
 void AtlasMode::recordFirstShot(VkCommandBuffer cmd, double time) {
     Gpu& g = *mGpu;
-    if (g.direct.environmentShadows) {
-        recordEnvironmentShot(cmd, time);
-    }
     g.direct.emitterPoints->record(cmd, time, &g.timer);
+    g.direct.environmentShadows->record(cmd, time, &g.timer);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     shader::AtlasFirstShotPush push{};
     push.samples = addressOf(*mContext, g.direct.samples);

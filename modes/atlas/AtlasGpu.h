@@ -85,10 +85,8 @@ struct AtlasDirectState {
     vk::Buffer pointDirect, shotSum;
     vk::BoundSet firstShotSet;
     vk::ComputePass<shader::AtlasFirstShotPush> firstShotPass;
-    // The environment's part (environment_shots > 0): its directions and their depth maps.
+    // The environment's part: its directions and their depth maps (off without the environment's shot).
     std::unique_ptr<EnvironmentShadowPass> environmentShadows;
-    vk::BoundSet environmentShotSet;
-    vk::ComputePass<shader::AtlasEnvironmentShotPush> environmentShotPass;
 };
 
 // The glossy passes (AtlasGlossy.cpp, [HHGM10] §5.3-5.4): the transfer atlas rides in the

@@ -306,7 +306,8 @@ shader::AtlasDirection AtlasMode::directionParams(const shader::BundleFrame& fra
     // Bounce-by-bounce: the environment is a source, sent in pass 1 only (later passes send reflected light).
     // The environment's first shot has lit every texel directly: its list ends receive nothing.
     const bool environment =
-        g.exchange.environment.present() && (!mOptions.bounce || mPass == 1) && !g.direct.environmentShadows;
+        g.exchange.environment.present() && (!mOptions.bounce || mPass == 1) &&
+        !(g.direct.environmentShadows && !g.direct.environmentShadows->off());
     params.environmentForward = environment ? g.exchange.environment.radiance(frame.direction) : glm::vec3(0.0f);
     params.environmentBackward = environment ? g.exchange.environment.radiance(-frame.direction) : glm::vec3(0.0f);
     const float density = g.exchange.directions->hemispherePdf(frame.direction);
@@ -414,9 +415,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
     update.iteration = mIterations;
     if (g.direct.firstShot) {
         g.direct.emitterPoints->prepare(info.seed, mIterations, info.time);
-        if (g.direct.environmentShadows) {
-            g.direct.environmentShadows->prepare(info.seed, mIterations);
-        }
+        g.direct.environmentShadows->prepare(info.seed, mIterations);
     }
     std::optional<WallSpan> wall(std::in_place, g.exchange.wallExchange);
     mContext->submitAndWait([&](VkCommandBuffer cmd) {

@@ -237,8 +237,6 @@ private:
     };
     FirstShotChoice firstShotChoice(const Scene& scene) const;
     void recordFirstShot(VkCommandBuffer cmd, double time);
-    // The environment's part: environment_shots depth maps and their light into the shots' sum.
-    void recordEnvironmentShot(VkCommandBuffer cmd, double time);
     // The sampler index of the i-th direction processed (shuffled in blocks for the glossy
     // transfer, DirectionOrder.h; else i).
     std::uint32_t directionIndex(std::uint32_t i) const;

@@ -36,30 +36,23 @@ bool blEnvironmentShadowVisible(uint k, vec3 x, vec3 n, float cosine) {
              blBundleSurfaceDepth(frame, pixel, x, depth, n) + blBundleSurfaceEpsilon(frame, cosine));
 }
 
-// The estimate's sum over the directions on n's side, sum_k g_k V_k (n . omega_k) weight_k, with
-// g = f(x, omega_k, wo) where `reflect`, else 1 (the irradiance at x on n's side, for a caller that
-// applies its own reflectance: atlas texels, albedo / pi).
-vec3 blEnvironmentShadowSum(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, bool reflect) {
-    vec3 sum = vec3(0.0);
+// The irradiance at x on both sides of its surface (normal n: `front`, -n: `back`) in one pass over
+// the directions: each direction lights one side, one visibility test each (atlas texels).
+void blEnvironmentShadowIrradianceBothSides(vec3 x, vec3 n, out vec3 front, out vec3 back) {
+    front = vec3(0.0);
+    back = vec3(0.0);
     for (uint k = 0u; k < blEnvironmentShadowHeader.count; ++k) {
-        vec3 omega = blEnvironmentShadows[k].frame.direction;
-        float cosine = dot(n, omega);
-        if (cosine <= 0.0 || !blEnvironmentShadowVisible(k, x, n, cosine)) {
+        float cosine = dot(n, blEnvironmentShadows[k].frame.direction);
+        if (cosine == 0.0 || !blEnvironmentShadowVisible(k, x, n, cosine)) {
             continue;
         }
-        vec3 f = reflect ? blEvalBrdf(m, albedo, n, omega, wo) : vec3(1.0);
-        sum += f * blEnvironmentShadows[k].weight * cosine;
+        vec3 light = blEnvironmentShadows[k].weight * abs(cosine);
+        if (cosine > 0.0) {
+            front += light;
+        } else {
+            back += light;
+        }
     }
-    return sum;
-}
-
-vec3 blEnvironmentShadowIrradiance(vec3 x, vec3 n) {
-    GpuMaterial unused = GpuMaterial(vec3(0.0), 0u, vec3(0.0), 0.0, 0.0, 0u, 0u, 0u);
-    return blEnvironmentShadowSum(x, n, unused, vec3(0.0), n, false);
-}
-
-vec3 blEnvironmentShadowLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo) {
-    return blEnvironmentShadowSum(x, n, m, albedo, wo, true);
 }
 
 // The balance heuristic against escaping paths along directions of solid-angle density
@@ -81,7 +74,8 @@ float blEnvironmentEscapeWeight(vec3 radiance, float directionPdf) {
 }
 
 #ifdef BL_ENVIRONMENT_SHADOW_RADIANCE
-// blEnvironmentShadowLight with each direction weighted K q~ / (K q~ + directionPdf) against escapes.
+// The light the directions reflect at x toward wo, sum_k f(x, omega_k, wo) weight_k V_k (n . omega_k),
+// each weighted K q~ / (K q~ + directionPdf) against escapes.
 vec3 blEnvironmentShadowLightMis(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float directionPdf) {
     vec3 sum = vec3(0.0);
     float requested = float(blEnvironmentShadowHeader.requested);

@@ -105,25 +105,11 @@ BL_CONST uint kAtlasFirstShotSet = 0u;
 BL_CONST uint kAtlasFirstShotBindingPoints = 0u; // GpuEmitterPointHeader + GpuEmitterPoint[]
 BL_CONST uint kAtlasFirstShotBindingMaps = 1u;   // the points' cubes (map 0 of the lookup; unused)
 BL_CONST uint kAtlasFirstShotBindingMaps2 = 2u;  // the same image as map 1, which EmitterPointLight reads
+// The environment's part (environment_shots = K > 0): K directions drawn by its importance, a depth
+// map each (bundle/EnvironmentShadowPass.h; off: no directions, placeholders bound).
+BL_CONST uint kAtlasFirstShotBindingEnvironment = 3u;     // GpuEnvironmentShadowHeader + GpuEnvironmentShadow[]
+BL_CONST uint kAtlasFirstShotBindingEnvironmentMaps = 4u; // their depth maps (r32f 2D array)
 
-// The environment's first shot (environment_shots = K > 0, with the first shot): each iteration,
-// K directions drawn by the environment's importance with a depth map each
-// (bundle/EnvironmentShadowPass.h); one invocation per texel adds their light at its sample points
-// to each side's running sum (environment_shot.comp.glsl), before the first shot's pass writes the
-// direct atlas from the sum; the exchange's list ends then receive nothing (their light was shot).
-struct AtlasEnvironmentShotPush {
-    uvec2 samples; // AtlasSample[] grouped by texel
-    uvec2 first;   // uint per texel + 1
-    uvec2 texels;  // AtlasTexel[]
-    uvec2 shotSum; // vec4 per texel side: the sum of the shots so far (added to)
-    uint texelCount;
-    uint pad0;
-    uvec2 pad1;
-};
-BL_STATIC_ASSERT(sizeof(AtlasEnvironmentShotPush) == 48, "AtlasEnvironmentShotPush layout");
-BL_CONST uint kAtlasEnvironmentShotSet = 0u;
-BL_CONST uint kAtlasEnvironmentShotBindingShadows = 0u; // GpuEnvironmentShadowHeader + GpuEnvironmentShadow[]
-BL_CONST uint kAtlasEnvironmentShotBindingMaps = 1u;    // their depth maps (r32f 2D array)
 
 BL_CONST uint kAtlasDirectSet = 0u;
 BL_CONST uint kAtlasDirectBindingLights = 0u;     // GpuLight[] storage buffer

@@ -2,15 +2,16 @@
 #extension GL_GOOGLE_include_directive : require
 // Mode atlas, the first shot (first_shot = auto | on; radiosity's "shoot the light sources first"):
 // one invocation per texel averages, over its sample points (modes/atlas/TexelSamples.h, weighted
-// by area), the irradiance this iteration's emitter points give each side of the surface
-// (gpu/EmitterPointLight.glsl), as the direct pass does for point lights:
-//   L_shot(T, side) = albedo_T / pi * sum_s w_s E_points(s, side) / sum_s w_s,
-// adds it to the side's running sum (which the environment's shot, environment_shot.comp.glsl, has
-// added this iteration's environment light to before), and writes the direct atlas (point/spot part
-// + the sum's mean over the iterations so far, an unbiased estimate of the emitters' and the
-// environment's direct light) and the sender record's constant part (the same, with no emission:
-// the exchange then carries reflected light only, the direct light having been shot). Without
-// area emitters there are no points and only the sum's mean is written.
+// by area), the irradiance this iteration's emitter points (gpu/EmitterPointLight.glsl) and
+// environment directions (gpu/EnvironmentShadowLight.glsl: a depth map each) give each side of the
+// surface, as the direct pass does for point lights:
+//   L_shot(T, side) = albedo_T / pi * sum_s w_s (E_points(s, side) + E_environment(s, side)) / sum_s w_s,
+// adds it to the side's running sum, and writes the direct atlas (point/spot part + the sum's mean
+// over the iterations so far, an unbiased estimate of the emitters' and the environment's direct
+// light, up to the depth maps' contact strips) and the sender record's constant part (the same,
+// with no emission: the exchange then carries reflected light only, the direct light having been
+// shot; its list ends receive nothing where the environment was shot). A part whose source the
+// scene lacks has no points or directions and adds nothing.
 #include "modes/atlas/AtlasBuffers.glsl"
 #define BL_SHADOW_SET kAtlasFirstShotSet
 #define BL_SHADOW_BINDING kAtlasFirstShotBindingMaps
@@ -19,6 +20,10 @@
 #define BL_EMITTER_POINTS_SET kAtlasFirstShotSet
 #define BL_EMITTER_POINTS_BINDING kAtlasFirstShotBindingPoints
 #include "gpu/EmitterPointLight.glsl"
+#define BL_ENVIRONMENT_SHADOWS_SET kAtlasFirstShotSet
+#define BL_ENVIRONMENT_SHADOWS_BINDING kAtlasFirstShotBindingEnvironment
+#define BL_ENVIRONMENT_SHADOW_MAPS_BINDING kAtlasFirstShotBindingEnvironmentMaps
+#include "gpu/EnvironmentShadowLight.glsl"
 
 layout(local_size_x = kAtlasGroupSize) in;
 layout(push_constant) uniform PushBlock { AtlasFirstShotPush push; };
@@ -28,7 +33,8 @@ layout(buffer_reference, std430, buffer_reference_align = 4) buffer AtlasShotFir
 
 void main() {
     uint texel = gl_GlobalInvocationID.x;
-    if (texel >= push.texelCount) {
+    // A texel no surface maps to is never hit, read or seen: nothing to write (its words stay zero).
+    if (texel >= push.texelCount || !(AtlasTexels(push.texels).texels[texel].inverseArea > 0.0)) {
         return;
     }
     AtlasShotSamples samples = AtlasShotSamples(push.samples);
@@ -37,8 +43,10 @@ void main() {
     float weights = 0.0;
     for (uint s = first.first[texel]; s < first.first[texel + 1u]; ++s) {
         AtlasSample point = samples.samples[s];
-        irradiance[kAtlasFront] += point.weight * blEmitterPointsIrradiance(point.position, point.normal);
-        irradiance[kAtlasBack] += point.weight * blEmitterPointsIrradiance(point.position, -point.normal);
+        vec3 front, back;
+        blEnvironmentShadowIrradianceBothSides(point.position, point.normal, front, back);
+        irradiance[kAtlasFront] += point.weight * (blEmitterPointsIrradiance(point.position, point.normal) + front);
+        irradiance[kAtlasBack] += point.weight * (blEmitterPointsIrradiance(point.position, -point.normal) + back);
         weights += point.weight;
     }
     vec3 scale = AtlasTexels(push.texels).texels[texel].albedo / kPi / max(weights, 1e-30);
