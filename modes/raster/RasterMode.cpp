@@ -2,6 +2,8 @@
 
 #include "base/Error.h"
 #include "modes/EmitterPointParameters.h"
+#include "modes/EnvironmentShadowParameters.h"
+#include "bundle/EnvironmentShadowPass.h"
 #include "modes/LightShadowPass.h"
 #include "sampling/PixelSamples.h"
 #include "scene/Scene.h"
@@ -24,8 +26,11 @@ std::vector<ParamSpec> RasterMode::parameters() {
          "side of each shadow cube face ([TO12] used 1024^2 per face for direct light)", 16, 8192, {}},
         {kJitter, true, "", "move the sample inside the pixel (box filter; seed 0 starts at the centre, other seeds shift the sequence)", 0, 1, {}},
     };
-    return withEmitterPointParameters(std::move(params), "iteration",
-                                      "direct light from area emitters (0: area lights left out)", 0);
+    params = withEmitterPointParameters(std::move(params), "iteration",
+                                        "direct light from area emitters (0: area lights left out)", 0);
+    return withEnvironmentShadowParameters(std::move(params), "iteration",
+                                           "direct light from the environment (0: the environment seen only, lighting "
+                                           "nothing)");
 }
 
 std::unique_ptr<Mode> RasterMode::create(const Settings& settings) {
@@ -39,6 +44,7 @@ struct RasterMode::Gpu {
     std::unique_ptr<gpu::CameraPass> camera;
     std::unique_ptr<gpu::ShadowCubePass> shadows;
     std::unique_ptr<gpu::EmitterPointPass> emitterPoints;
+    std::unique_ptr<EnvironmentShadowPass> environmentShadows; // off (placeholders) unless the plan runs it
     vk::BoundSet bound;
     vk::ComputePass<shader::RasterPush> shade;
     vk::GpuTimer timer;
@@ -68,14 +74,21 @@ PassPlan RasterMode::plan(const Scene& scene) const {
     auto add = [&shading](const std::string& s) { shading += (shading.empty() ? "" : ", ") + s; };
     if (f.emissiveMeshes) add("visible emitters");
     if (areaLight) add("direct light from the emitters");
+    const std::uint32_t shots = mOptions.environmentShots;
+    const bool environmentLight = f.environment && shots > 0;
+    // Warned when left out: the image then lacks light the scene has.
+    p.add(kPassEnvironmentShadows, "environment light", environmentLight,
+          !f.environment ? "no-environment" : environmentLight ? "environment" : "environment-shots-0",
+          !f.environment     ? "no environment"
+          : environmentLight ? std::to_string(shots) + " direction(s) toward the environment per iteration, by its "
+                                                       "importance, a " +
+                                   std::to_string(mOptions.environmentShadowResolution) + "^2 depth map each"
+                             : "environment_shots = 0: the environment is seen but lights nothing",
+          f.environment && !environmentLight);
+    if (environmentLight) add("direct light from the environment");
     if (f.environment) add("environment behind geometry");
     p.add("shade", "shade", true, shading.empty() ? "unlit" : "lit",
           shading.empty() ? "nothing lights the scene: black" : shading);
-    // The environment is seen, but lights nothing.
-    if (f.environment) {
-        p.add("environment-light", "environment light", false, "not-rasters-job",
-              "raster lights with point, spot and area lights only: use skylight, reference or multibounce", true);
-    }
     return p;
 }
 
@@ -96,7 +109,11 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     const std::uint32_t pointSide = mOptions.emitterShadowResolution;
     ctx->requireDeviceMemory(pixels * gpu::CameraPass::bytesPerPixel(shader::kRasterAccumLayers) +
                                  shadowSide * shadowSide * 4 * (6 * lights + 1) +
-                                 (mPlan.runs(kPassEmitterPoints) ? gpu::EmitterPointPass::bytesFor(points, pointSide) : 0),
+                                 (mPlan.runs(kPassEmitterPoints) ? gpu::EmitterPointPass::bytesFor(points, pointSide) : 0) +
+                                 (mPlan.runs(kPassEnvironmentShadows)
+                                      ? EnvironmentShadowPass::bytesFor(mOptions.environmentShots,
+                                                                        mOptions.environmentShadowResolution)
+                                      : 0),
                              "raster at " + std::to_string(width) + "x" + std::to_string(height));
 
     auto g = std::make_unique<Gpu>();
@@ -105,13 +122,19 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, mOptions.shadowResolution);
     g->emitterPoints = std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene,
                                                                mPlan.runs(kPassEmitterPoints) ? points : 0u, pointSide);
+    g->environmentShadows = std::make_unique<EnvironmentShadowPass>(
+        *ctx, *g->scene, scene, mPlan.runs(kPassEnvironmentShadows) ? mOptions.environmentShots : 0u,
+        mOptions.environmentShadowResolution);
     g->timer = vk::GpuTimer(*ctx);
 
     g->bound = vk::BoundSet(
         device, {vk::Bound::storageBuffer(shader::kRasterBindingLights, g->scene->lightBuffer()),
                  vk::Bound::storageImage(shader::kRasterBindingShadowMaps, g->shadows->maps().view()),
                  vk::Bound::storageBuffer(shader::kRasterBindingEmitterPoints, g->emitterPoints->buffer()),
-                 vk::Bound::storageImage(shader::kRasterBindingEmitterShadowMaps, g->emitterPoints->maps().view())});
+                 vk::Bound::storageImage(shader::kRasterBindingEmitterShadowMaps, g->emitterPoints->maps().view()),
+                 vk::Bound::storageBuffer(shader::kRasterBindingEnvironmentShadows, g->environmentShadows->buffer()),
+                 vk::Bound::storageImage(shader::kRasterBindingEnvironmentShadowMaps,
+                                         g->environmentShadows->maps().view())});
     g->shade = vk::ComputePass<shader::RasterPush>(device, kSpv_modes_raster_shade_comp,
                                                    {g->camera->setLayout(), g->bound.layout()});
     mGpu = std::move(g);
@@ -124,6 +147,7 @@ void RasterMode::iterate(const IterationInfo& info) {
     const gpu::CameraSample sample = g.camera->sample(mIterations, mOptions.jitter, info.time, info.seed);
     const bool renderShadows = mPlan.runs(kPassLightShadowCubes) && g.shadows->refreshFor(*mContext, *g.scene, info.time);
     g.emitterPoints->prepare(info.seed, mIterations, info.time);
+    g.environmentShadows->prepare(info.seed, mIterations);
 
     mContext->submitAndWait([&](VkCommandBuffer cmd) {
         g.timer.begin(cmd);
@@ -131,6 +155,7 @@ void RasterMode::iterate(const IterationInfo& info) {
             g.shadows->record(cmd, info.time, &g.timer);
         }
         g.emitterPoints->record(cmd, info.time, &g.timer);
+        g.environmentShadows->record(cmd, info.time, &g.timer);
         g.camera->record(cmd, sample, &g.timer);
 
         shader::RasterPush push{};

@@ -7,8 +7,11 @@
 // the emitters by power each iteration, each shadowed by its own cube (gpu/EmitterPointPass.h,
 // shared/EmitterPoints.h: 1/M sum_k f L_e(y_k) cos_x cos_y V / (r^2 p_A(y_k))), so the average over
 // iterations converges to the emitters' direct light,
-// + the environment's radiance for camera rays that escape. No indirect light, no light from the
-// environment onto surfaces: those are the other modes' job.
+// + direct light from the environment by next-event estimation: `environment_shots` directions
+// drawn by its importance each iteration, each shadowed by an orthographic depth map
+// (bundle/EnvironmentShadowPass.h, shared/EnvironmentShadows.h),
+// + the environment's radiance for camera rays that escape. No indirect light: that is the other
+// modes' job.
 //
 // One iteration = one sample per pixel at a sub-pixel position (a Halton (2,3) sequence shifted by
 // the seed: seed 0 starts at the pixel centre; core/sampling/PixelSamples.h), so iterating
@@ -18,6 +21,8 @@
 //   shadow_resolution  1024  texels   side of each shadow cube face
 //   emitter_points     16    points   on the area emitters per iteration (0: area lights left out)
 //   emitter_shadow_resolution 256 texels side of each emitter point's shadow cube face
+//   environment_shots  4     directions toward the environment per iteration (0: it lights nothing)
+//   environment_shadow_resolution 512 texels side of each direction's depth map
 //   jitter             true           move the sample inside the pixel (false: pixel centres)
 #pragma once
 
@@ -41,6 +46,7 @@ public:
 
     // The ids of the plan's passes that setScene() and iterate() execute.
     static constexpr const char* kPassEmitterPoints = "emitter-points";
+    static constexpr const char* kPassEnvironmentShadows = "environment-light";
 
     static std::vector<ParamSpec> parameters();
     static std::unique_ptr<Mode> create(const Settings& settings);

@@ -12,6 +12,8 @@ struct RasterOptions {
     bool jitter = true;                        // jitter: the sample position moves every iteration
     std::uint32_t emitterPoints = 0;           // emitter_points
     std::uint32_t emitterShadowResolution = 0; // emitter_shadow_resolution
+    std::uint32_t environmentShots = 0;        // environment_shots: directions toward the environment per iteration
+    std::uint32_t environmentShadowResolution = 0;
 };
 
 // The options of validated settings (raster's parameter table: RasterMode.cpp).

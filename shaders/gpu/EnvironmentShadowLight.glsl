@@ -1,9 +1,10 @@
 // Light from this iteration's environment directions (core/bundle/EnvironmentShadowPass.h;
 // shaders/shared/EnvironmentShadows.h has the estimator), at x on the side of n. Define
 // BL_ENVIRONMENT_SHADOWS_SET, BL_ENVIRONMENT_SHADOWS_BINDING (the GpuEnvironmentShadow buffer) and
-// BL_ENVIRONMENT_SHADOW_MAPS_BINDING (their depth maps, an r32f 2D array) first; for the MIS
-// variant also BL_ENVIRONMENT_SHADOW_RADIANCE(d), the caller's own lookup of L_e(d), which its
-// escaping paths read too (the weights are then a partition of unity to the last bit).
+// BL_ENVIRONMENT_SHADOW_MAPS_BINDING (their depth maps, an r32f 2D array) first; a caller that also
+// reaches the environment by escaping paths defines BL_ENVIRONMENT_SHADOW_RADIANCE(d), its own
+// lookup of L_e(d), which its escapes read too (the MIS weights are then a partition of unity to
+// the last bit).
 //
 // Visibility as skylight's depth_map: x tests the map at its pixel's centre, which box-filters the
 // visibility over the pixel (the mean is kept except in strips half a pixel diagonal wide beside
@@ -73,10 +74,10 @@ float blEnvironmentEscapeWeight(vec3 radiance, float directionPdf) {
     return directionPdf > 0.0 ? directionPdf / (directionPdf + directions) : 0.0;
 }
 
-#ifdef BL_ENVIRONMENT_SHADOW_RADIANCE
 // The light the directions reflect at x toward wo, sum_k f(x, omega_k, wo) weight_k V_k (n . omega_k),
-// each weighted K q~ / (K q~ + directionPdf) against escapes.
-vec3 blEnvironmentShadowLightMis(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float directionPdf) {
+// each weighted K q~ / (K q~ + directionPdf) against escapes where the caller has them
+// (directionPdf > 0, BL_ENVIRONMENT_SHADOW_RADIANCE defined); directionPdf = 0: the directions alone.
+vec3 blEnvironmentShadowLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float directionPdf) {
     vec3 sum = vec3(0.0);
     float requested = float(blEnvironmentShadowHeader.requested);
     for (uint k = 0u; k < blEnvironmentShadowHeader.count; ++k) {
@@ -85,12 +86,16 @@ vec3 blEnvironmentShadowLightMis(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec
         if (cosine <= 0.0 || !blEnvironmentShadowVisible(k, x, n, cosine)) {
             continue;
         }
-        float directions = requested * blEnvironmentShadowDensity(BL_ENVIRONMENT_SHADOW_RADIANCE(omega));
-        float weight = directions / (directions + directionPdf);
+        float weight = 1.0;
+#ifdef BL_ENVIRONMENT_SHADOW_RADIANCE
+        if (directionPdf > 0.0) {
+            float directions = requested * blEnvironmentShadowDensity(BL_ENVIRONMENT_SHADOW_RADIANCE(omega));
+            weight = directions / (directions + directionPdf);
+        }
+#endif
         sum += blEvalBrdf(m, albedo, n, omega, wo) * blEnvironmentShadows[k].weight * (cosine * weight);
     }
     return sum;
 }
-#endif
 
 #endif

@@ -116,7 +116,7 @@ void tracePath(vec3 x0, uint own0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 e
         layers[layerOf(segments + 1u)] +=
             throughput * (directLight(x, n, m, albedo, wo) +
                           blEmitterPointsLight(x, n, m, albedo, wo, bundleLeft ? bundlePdf : 0.0) +
-                          blEnvironmentShadowLightMis(x, n, m, albedo, wo, bundleLeft ? bundlePdf : 0.0));
+                          blEnvironmentShadowLight(x, n, m, albedo, wo, bundleLeft ? bundlePdf : 0.0));
 
         if (!bundleLeft) {
             break; // every one of K <= 8 bundles drawn: no direction independent of the path's is left

@@ -18,6 +18,10 @@
 #define BL_EMITTER_POINTS_SET kRasterSet
 #define BL_EMITTER_POINTS_BINDING kRasterBindingEmitterPoints
 #include "gpu/EmitterPointLight.glsl"
+#define BL_ENVIRONMENT_SHADOWS_SET kRasterSet
+#define BL_ENVIRONMENT_SHADOWS_BINDING kRasterBindingEnvironmentShadows
+#define BL_ENVIRONMENT_SHADOW_MAPS_BINDING kRasterBindingEnvironmentShadowMaps
+#include "gpu/EnvironmentShadowLight.glsl"
 
 layout(local_size_x = kRasterGroupSize, local_size_y = kRasterGroupSize) in;
 
@@ -58,8 +62,9 @@ void main() {
     }
     layers[kPathEmitted] = imageLoad(gbuffer[kGBufferEmission], pixel).rgb;
     GpuMaterial material = materials[uint(normalMaterial.w)];
+    vec3 wo = normalize(camera.position - position);
     layers[kPathDirect] = directLight(position, normalMaterial.xyz, material, albedo) +
-                          blEmitterPointsLight(position, normalMaterial.xyz, material, albedo,
-                                               normalize(camera.position - position), 0.0);
+                          blEmitterPointsLight(position, normalMaterial.xyz, material, albedo, wo, 0.0) +
+                          blEnvironmentShadowLight(position, normalMaterial.xyz, material, albedo, wo, 0.0);
     blAccumulate(pixel, layers);
 }
