@@ -68,6 +68,12 @@ protected:
                                  std::uint32_t seeds, double norm, double other, const std::string& label,
                                  double mapStrip = 0.0);
 
+    // Layer `direct` of `both` against the sum of `one`'s and `other`'s (4 directions, the same
+    // seed: the same points, directions and cubes), each of the two at least a tenth of the other;
+    // printed under `label`. Defined in AtlasModeTest.cpp.
+    void expectDirectLayersAdd(const Scene& one, const Scene& other, const Scene& both,
+                               const std::vector<std::string>& settings, const char* label);
+
     // One seed's run at `directions`: its images (checked finite), and the atlas's texel side into
     // `side` on the first call (the atlas does not depend on the seed).
     ImageSet resolveSeed(const Scene& scene, std::uint32_t directions, const std::vector<std::string>& settings,
