@@ -1,8 +1,8 @@
 // Mode atlas's first shot (first_shot = auto | on): the area emitters' direct light by emitter points
 // (gpu/EmitterPointPass.h) and the environment's by environment_shots directional depth maps drawn
-// by its importance (bundle/DepthMapPass.h) into the direct atlas, new points and directions every
-// direction, so the exchange carries reflected light only (shaders/modes/atlas/first_shot.comp.glsl,
-// environment_shot.comp.glsl).
+// by its importance (bundle/EnvironmentShadowPass.h) into the direct atlas, new points and directions
+// every direction, so the exchange carries reflected light only (shaders/modes/atlas/first_shot.comp.glsl:
+// one pass over the texels' samples for both).
 #include "modes/atlas/AtlasGpu.h"
 
 #include "vk/Commands.h"

@@ -11,7 +11,8 @@
 // with the hit payload and depth-sorted: consecutive hits y, x of a pixel's list are consecutive
 // surface crossings of the pixel's ray, so they see each other, y along +omega and x along -omega.
 // Each pair exchanges radiance both ways ([HHGM10] Eq. 3); the first hit's -omega side and the last
-// hit's +omega side see the environment (when the scene has one).
+// hit's +omega side see the environment (when the scene has one and its light was not shot: the
+// first shot, AtlasFirstShot.cpp, then lit every texel directly and the list ends receive nothing).
 //
 // Estimator. The reflected radiance of side s of T is the area average
 //   L_r(T) = 1/A_T  int_T  int_{H_s} (rho/pi) L_in(x, w) cos(theta) dw dA(x).
@@ -116,6 +117,13 @@
 //   importance_offset  1.0                directions = importance: offset of the environment's density
 //   shadow_resolution  512     texels     side of each point/spot light's shadow cube face
 //   light_samples      2       per side   n x n points per texel gather point/spot light
+//   first_shot         auto               the area emitters' and the environment's direct light shot
+//                                         into the direct atlas (auto: where the settings allow it)
+//   emitter_points     16      points     first shot: on the emitters per direction
+//   emitter_shadow_resolution 256 texels  first shot: side of each point's shadow cube face
+//   environment_shots  4       directions first shot: toward the environment per direction, by its
+//                                         importance, a depth map each (0: the list ends carry it)
+//   environment_shadow_resolution 512     first shot: side of each direction's depth map
 #pragma once
 
 #include "atlas/TexelRadiance.h"

@@ -60,11 +60,15 @@
 //   splat_scale        2.0                   imperfect: disc radius in units of sqrt(A / (pi N))
 //   splat_uv           corners               imperfect: corners (UV interpolated over the splat) or
 //                                            centre (the splat's centre texel everywhere, for comparison)
-//   emitter_sampling   mis                   area emitters after a bounce: mis (bundle hits and emitter
-//                                            points, balance heuristic), bundles (hits alone, as [TO12]),
-//                                            points (emitter points alone)
+//   emitter_sampling   mis                   area emitters and the environment after a bounce: mis (bundle
+//                                            hits and escapes, emitter points and environment directions,
+//                                            balance heuristic), bundles (hits and escapes alone, as
+//                                            [TO12]), points (points and directions alone)
 //   emitter_points     16      points        on the emitters per iteration, by power (gpu/EmitterPointPass.h)
 //   emitter_shadow_resolution 256 texels     side of each emitter point's shadow cube face
+//   environment_shots  4       directions    toward the environment per iteration, by its importance, a
+//                                            depth map each (bundle/EnvironmentShadowPass.h; 0: escapes alone)
+//   environment_shadow_resolution 512 texels side of each direction's depth map
 #pragma once
 
 #include "modes/Mode.h"

@@ -3,8 +3,8 @@
 // BL_ENVIRONMENT_SHADOWS_SET, BL_ENVIRONMENT_SHADOWS_BINDING (the GpuEnvironmentShadow buffer) and
 // BL_ENVIRONMENT_SHADOW_MAPS_BINDING (their depth maps, an r32f 2D array) first; a caller that also
 // reaches the environment by escaping paths defines BL_ENVIRONMENT_SHADOW_RADIANCE(d), its own
-// lookup of L_e(d), which its escapes read too (the MIS weights are then a partition of unity to
-// the last bit).
+// lookup of L_e(d), which its escapes read too (the MIS weights are then a partition of unity up to
+// float rounding).
 //
 // Visibility as skylight's depth_map: x tests the map at its pixel's centre, which box-filters the
 // visibility over the pixel (the mean is kept except in strips half a pixel diagonal wide beside

@@ -23,7 +23,7 @@ struct GpuEnvironmentShadowHeader {
     uint count;           // directions this iteration with light (0: none; the estimates leave them out)
     uint requested;       // K: directions drawn per iteration (0: the pass is off), the MIS count
     float luminanceScale; // q~'s luminance factor: P / integral of lum(L_e) over the sphere
-    float uniformDensity; // q~'s uniform part: (1 - P) / (4 pi)
+    float uniformDensity; // q~'s uniform part: (1 - P) / (4 pi); 1 / (4 pi) for a black environment
 };
 BL_STATIC_ASSERT(sizeof(GpuEnvironmentShadowHeader) == 16, "GpuEnvironmentShadowHeader layout");
 

@@ -33,7 +33,8 @@ layout(buffer_reference, std430, buffer_reference_align = 4) buffer AtlasShotFir
 
 void main() {
     uint texel = gl_GlobalInvocationID.x;
-    // A texel no surface maps to is never hit, read or seen: nothing to write (its words stay zero).
+    // A texel no surface maps to is never hit, read or seen: nothing to write (its direct and sum
+    // words stay zero, its sender record what the init pass wrote: none of it is read).
     if (texel >= push.texelCount || !(AtlasTexels(push.texels).texels[texel].inverseArea > 0.0)) {
         return;
     }

@@ -286,6 +286,38 @@ TEST_F(Atlas, EnvironmentShotAddsToTheEmittersShot) {
     expectDirectLayersAdd(areaOnly, skyOnly, both, settings, "area + sky");
 }
 
+// Where the first shot cannot run (transfer = bounce, delay_indirect: their senders are not the
+// shot's), first_shot = auto leaves the environment to the exchange's list ends: the Cornell box
+// (open in front) under a constant sky and no emitter, lit through the list ends, reflects about
+// what the shot gives (the same sky, 16 directions each; bounce keeps the first pass, the sky's
+// direct light, as the shot's `direct`). Measured: bounce 0.708 of the shot (its first pass alone),
+// delay_indirect 1.014. A condition that dropped the sky from the list ends without shooting it
+// would leave the box dark (ratio 0).
+TEST_F(Atlas, EnvironmentReachesTheListEndsWhereTheShotCannotRun) {
+    Scene s = loadSmall("data/cornell-box/cornell.toml", 16);
+    for (Mesh& m : s.meshes) m.emission = glm::vec3(0.0f);
+    s.environment.present = true;
+    s.environment.radiance = glm::vec3(0.8f, 0.9f, 1.0f);
+    const std::vector<std::string> common{"atlas_resolution=32", "bundle_resolution=32"};
+    const auto reflected = [&](const std::vector<std::string>& more) {
+        std::vector<std::string> settings = common;
+        settings.insert(settings.end(), more.begin(), more.end());
+        return lumaMean(reflectedLight(run(s, 16, settings)->resolve()));
+    };
+    const double shot = reflected({});
+    for (const std::vector<std::string>& conflict :
+         {std::vector<std::string>{"transfer=bounce", "bounce_directions=16"}, std::vector<std::string>{"delay_indirect=4"}}) {
+        std::vector<std::string> settings = common;
+        settings.insert(settings.end(), conflict.begin(), conflict.end());
+        EXPECT_FALSE(createMode("atlas", settings)->plan(s).runs("first-shot")) << conflict[0];
+        const double listEnds = reflected(conflict);
+        std::printf("reflected light: shot %.5g, %s %.5g (ratio %.3f)\n", shot, conflict[0].c_str(), listEnds,
+                    listEnds / shot);
+        EXPECT_GT(listEnds, 0.5 * shot) << conflict[0];
+        EXPECT_LT(listEnds, 2.0 * shot) << conflict[0];
+    }
+}
+
 // Delayed indirect light ([HHGM10] section 6.4) on the box lit by its whole ceiling. With
 // delay_indirect = N the one-bounce channel (the emitters' light received once: a fixed sender,
 // the plain mean over all n directions) is layer `direct`: given the same directions it is the

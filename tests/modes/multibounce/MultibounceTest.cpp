@@ -166,16 +166,19 @@ TEST_F(Multibounce, EnvironmentLightThroughEscapingPathsMatchesReference) {
 }
 
 // The HDR sky of sky-blocks (a sun in it, the glossy block kept) by the environment's directions
-// (environment_shots = 4 per iteration drawn by its importance, a depth map each, at every path
+// (environment_shots = 32 per iteration drawn by its importance, a depth map each, at every path
 // vertex) and the escaping paths, weighed by the balance heuristic (emitter_sampling = mis, the
-// default). Each layer within its bundle segments' k f, as above, plus what the depth maps' contact
+// default); and the directions alone (emitter_sampling = points: escapes weigh 0), image and
+// `direct` means. Each layer within its bundle segments' k f, as above, plus what the depth maps' contact
 // strips can lose of it: a vertex tests its map pixel's centre, up to h (half the pixel's diagonal)
 // away, which keeps the mean except beside contact lines, on both sides (AtlasBias.h texelBias,
 // bothSides, as skylight's depth_map). The image region by region. 4 seeds x 16 iterations x 16
 // paths, 32 directions per iteration (at 4 the seeds spread 5 %: the whole image shares the sun's
 // 64 directions): direct -1.1 % (tolerance 6.1 %), indirect1 -0.4 % (14.1 %), image -0.5 % (4.5 %),
 // every region within. Mutation: escapes weighed 1 (the sky counted twice where both strategies
-// reach it): direct +92 % (fails).
+// reach it): direct +92 % (fails). The directions
+// alone: direct -1.2 %, image -0.6 %; escapes weighed 1 there too (where no escape should count):
+// direct +95 % (fails).
 TEST_F(Multibounce, EnvironmentMapByItsDirectionsMatchesReference) {
     BL_SKIP_WITHOUT_SCENE_FILES("data/analytic/sky-blocks.toml");
     const Scene s = loadSmall("data/analytic/sky-blocks.toml", kStatResolution);
@@ -201,6 +204,13 @@ TEST_F(Multibounce, EnvironmentMapByItsDirectionsMatchesReference) {
     const double image = imageTolerance(reference, bounds);
     expectLayerMean(runs, reference, "", image, "sky map");
     expectLayerRegions(runs, reference, "", kRegionFactor * image, kDimRegion, "sky map");
+    const std::vector<ImageSet> points =
+        renderSeeds(s, 16,
+                    {"paths_per_pixel=16", "environment_shots=32", "emitter_sampling=points",
+                     "environment_shadow_resolution=" + std::to_string(kMapResolution)},
+                    kTextureSeeds);
+    expectLayerMean(points, reference, "direct", f + strip("direct"), "sky map, directions alone");
+    expectLayerMean(points, reference, "", image, "sky map, directions alone");
 }
 
 // A closed box of albedo 1/2 emitting radiance 1 everywhere: L = 1 / (1 - 1/2) = 2, split by path
