@@ -9,7 +9,10 @@
 // Visibility as skylight's depth_map: x tests the map at its pixel's centre, which box-filters the
 // visibility over the pixel (the mean is kept except in strips half a pixel diagonal wide beside
 // contact lines, where light is lost), the map's surface counting from blBundleSurfaceEpsilon past
-// x's own plane whatever its winding (bundle/Traversal.glsl).
+// x's own plane whatever its winding (bundle/Traversal.glsl). That tolerance is partly a share of
+// the map's pixel, so an occluder closer than it passes and light is gained there: on the stress
+// suite's base-sky raster's direct light reads +1.1 % / +0.35 % / +0.15 % at 128^2 / 512^2 / 2048^2
+// maps. Both fall with the pixel; the tests bound them by the strips' light either way.
 #ifndef BL_GPU_ENVIRONMENT_SHADOW_LIGHT_GLSL
 #define BL_GPU_ENVIRONMENT_SHADOW_LIGHT_GLSL
 #include "bundle/Traversal.glsl"

@@ -61,9 +61,11 @@ protected:
     // `rest` against the reference's indirect1 + indirect2 + rest less the interleaved deficit
     // (transport norm `norm`) within `other` + the texel bias of the indirect light; printed under
     // `label`. `mapStrip` > 0: the environment shot's depth maps, whose pixels are mapStrip (half a
-    // diagonal) wide: their visibility is a box filter that can lose the light of contact strips that
-    // wide on both sides (texelBias, bothSides) from the direct light; the indirect light, which the
-    // direct light feeds, is allowed the same share. Defined in AtlasModeTest.cpp.
+    // diagonal) wide: their visibility is the map pixel's centre, which can lose the light of contact
+    // strips that wide on both sides (texelBias, bothSides), and the surface tolerance (a share of
+    // the map's pixel) lets an occluder closer than it pass, which gains light there: the strips'
+    // light either way, for the direct light and, which it feeds, the indirect light. Defined in
+    // AtlasModeTest.cpp.
     void expectDirectAndIndirect(const Scene& scene, std::uint32_t directions, const std::vector<std::string>& settings,
                                  std::uint32_t seeds, double norm, double other, const std::string& label,
                                  double mapStrip = 0.0);

@@ -170,9 +170,10 @@ TEST_F(Multibounce, EnvironmentLightThroughEscapingPathsMatchesReference) {
 // vertex) and the escaping paths, weighed by the balance heuristic (emitter_sampling = mis, the
 // default); and the directions alone (emitter_sampling = points: escapes weigh 0), image and
 // `direct` means. Each layer within its bundle segments' k f, as above, plus what the depth maps' contact
-// strips can lose of it: a vertex tests its map pixel's centre, up to h (half the pixel's diagonal)
-// away, which keeps the mean except beside contact lines, on both sides (AtlasBias.h texelBias,
-// bothSides, as skylight's depth_map). The image region by region. 4 seeds x 16 iterations x 16
+// strips can move of it, either way: a vertex tests its map pixel's centre, up to h (half the
+// pixel's diagonal) away, which keeps the mean except beside contact lines, on both sides, and the
+// surface tolerance lets occluders closer than it pass (AtlasBias.h texelBias, bothSides, as
+// skylight's depth_map). The image region by region. 4 seeds x 16 iterations x 16
 // paths, 32 directions per iteration (at 4 the seeds spread 5 %: the whole image shares the sun's
 // 64 directions): direct -1.1 % (tolerance 6.1 %), indirect1 -0.4 % (14.1 %), image -0.5 % (4.5 %),
 // every region within. Mutation: escapes weighed 1 (the sky counted twice where both strategies

@@ -106,10 +106,12 @@ TEST_F(RasterScenes, SharedScenesMatchTheReferenceInWhatRasterComputes) {
 // importance, a 128^2 depth map each) against the reference's direct layer: 4 seeds x 64
 // iterations, image means on the statistics harness. The one bias: a point tests its map pixel's
 // centre, up to h (half the pixel's diagonal) away, which keeps the mean except in contact strips
-// of width h on both sides, where light is lost (AtlasBias.h texelBias, bothSides: the bound,
-// 2.2 % of the image at 128^2 maps). The seeds' spread is that of their direction sets (the same
+// of width h on both sides, where light is lost, and the surface tolerance (a share of the map's
+// pixel) lets occluders closer than it pass, which gains light there: the strips' light either way
+// (AtlasBias.h texelBias, bothSides: 2.2 % of the image at 128^2 maps). On base-sky (stress scenes)
+// the gain wins: raster's direct reads +1.1 % / +0.35 % / +0.15 % at 128^2 / 512^2 / 2048^2 maps. The seeds' spread is that of their direction sets (the same
 // at 2048 directions however split over iterations: 0.8 %; at 8192: 0.2 %), so the test takes
-// 8192 cheap maps per seed. Measured: 0.9966 of the reference (bracket 0.978 to 1.000). Mutation:
+// 8192 cheap maps per seed. Measured: 0.9966 of the reference (bracket 0.978 to 1.022). Mutation:
 // the maps' visibility ignored: +33 % (fails).
 TEST_F(RasterScenes, EnvironmentDirectLightMatchesTheReference) {
     BL_SKIP_WITHOUT_SCENE_FILES("data/analytic/sky-blocks.toml");
@@ -127,7 +129,10 @@ TEST_F(RasterScenes, EnvironmentDirectLightMatchesTheReference) {
     }
     const double h = std::sqrt(2.0) * double(s.bounds().radius()) / kMapResolution;
     const bl::test::atlas::TexelBias strip = bl::test::atlas::texelBias(s, referenceDirect, h, true);
-    const bl::test::atlas::Bracket b = bl::test::atlas::bracket({}, strip);
+    // Either way: the strips' light can be lost (the pixel's centre under the occluder) or gained
+    // (an occluder within the surface tolerance, a share of the map's pixel, passes).
+    const bl::test::atlas::Bracket b =
+        bl::test::atlas::bracket({}, {0.0, strip.secondOrder}, strip.hidden);
     const double reference0 = bl::test::lumaMean(referenceDirect);
     bl::test::expectSeedsAgree(means, b.centre * reference0, b.halfWidth * reference0, "environment direct");
 }
