@@ -11,9 +11,15 @@
 namespace bl {
 
 namespace {
-constexpr VkFormat kMapFormat = VK_FORMAT_R32_SFLOAT;
+// Depth (r) and the surface's shading normal (gba): bundle/DepthMapVisibility.glsl.
+constexpr VkFormat kMapFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 } // namespace
+
+VkDeviceSize DepthMapPass::bytesFor(std::uint32_t resolution, std::uint32_t layers) {
+    const VkDeviceSize texels = VkDeviceSize(resolution) * resolution;
+    return texels * (vk::bytesPerTexel(kMapFormat) * std::max(layers, 1u) + vk::bytesPerTexel(kDepthFormat));
+}
 
 DepthMapPass::DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, std::uint32_t resolution,
                            std::uint32_t layers)

@@ -1,7 +1,8 @@
 // The classic alternative to a bundle: an orthographic depth map along omega (a directional
 // shadow map), keeping only the surface nearest to a light at +infinity along omega. A point can
 // use it for one direction only (omega), where a bundle answers omega and -omega for everyone:
-// the comparison [TO12] makes. The map (r32f, linear depth in world units, -inf where empty) is in
+// the comparison [TO12] makes. The map (rgba32f: linear depth in world units, -inf where empty, and
+// the surface's shading normal, which the visibility test needs at creases) is in
 // VK_IMAGE_LAYOUT_GENERAL after record(). With `layers` > 0 the image is a 2D array of that many
 // maps (one per direction: EnvironmentShadowPass), each record rendering one layer.
 #pragma once
@@ -21,6 +22,9 @@ class DepthMapPass {
 public:
     // `layers` = 0: one map, viewed as a 2D image; else a 2D array of `layers` maps.
     DepthMapPass(const vk::Context& ctx, const gpu::GpuScene& scene, std::uint32_t resolution, std::uint32_t layers = 0);
+
+    // Device memory of the maps and their depth buffer (for a check before allocating).
+    static VkDeviceSize bytesFor(std::uint32_t resolution, std::uint32_t layers);
 
     // Renders the map for `frame` (width and height at most the resolution) into `layer` (the
     // other layers keep theirs). The frame is written in the command stream: several records in one

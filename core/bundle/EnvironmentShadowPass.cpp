@@ -21,8 +21,7 @@ constexpr float kUniformOffset = 0.1f;
 } // namespace
 
 VkDeviceSize EnvironmentShadowPass::bytesFor(std::uint32_t count, std::uint32_t resolution) {
-    const VkDeviceSize texels = VkDeviceSize(resolution) * resolution;
-    return texels * sizeof(float) * (VkDeviceSize(count) + 1) + sizeof(shader::GpuEnvironmentShadowHeader) +
+    return DepthMapPass::bytesFor(resolution, count) + sizeof(shader::GpuEnvironmentShadowHeader) +
            VkDeviceSize(count) * sizeof(shader::GpuEnvironmentShadow);
 }
 

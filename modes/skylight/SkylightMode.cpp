@@ -127,7 +127,7 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     if (depthMapVisibility) {
         g->depthMap = std::make_unique<DepthMapPass>(*ctx, *g->scene, mOptions.bundleResolution);
     } else {
-        g->placeholder = vk::GpuImage(*ctx, {1, 1, 1, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
+        g->placeholder = vk::GpuImage(*ctx, {1, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
     }
     g->environment = std::make_unique<EnvironmentLight>(scene.environment, true);
     if (mOptions.controlVariate) {

@@ -135,7 +135,12 @@ uint blBundleSurfaceNearest(BundleNodes nodes, uint head, BundleHitPayload hits,
                             BundleFrame frame, ivec2 pixel, vec3 x, float depth, vec3 n, float dir,
                             out float crossing) {
     vec3 e = blBundleCentreOffset(frame, pixel, x, depth);
-    float epsilon = blBundleSurfaceEpsilon(frame, dot(n, frame.direction));
+    float cosine = dot(n, frame.direction);
+    float epsilon = blBundleSurfaceEpsilon(frame, cosine);
+    // How far ahead of x's plane (along its normal on the travel side) the fragment's own point on
+    // the centre ray lies, per unit of depth and at x's depth.
+    float aheadPerDepth = abs(cosine);
+    float aheadAtX = -dot(e, cosine * dir >= 0.0 ? n : -n);
     uint best = kBundleNil;
     float bestDistance = 3.0e38;
     crossing = depth;
@@ -143,18 +148,140 @@ uint blBundleSurfaceNearest(BundleNodes nodes, uint head, BundleHitPayload hits,
         BundleNode node = nodes.nodes[i];
         vec3 m = n;
         bool mine = false;
+        bool ahead = true;
         if (payload) {
             BundleHit hit = hits.hits[i];
             m = blUnpackOctahedral(hit.normal);
             mine = hit.id == own;
+            // A plane from the payload crosses x's ray ahead of x also where its fragment lies
+            // behind x's plane: the other face of a convex edge, sampled just past the edge, whose
+            // plane x's ray meets in the air beyond it. The fragment must lie ahead of x's plane
+            // (the contact taps' rule (a), below); without a payload (m = n) the crossing says that.
+            ahead = aheadAtX + dir * (node.depth - depth) * aheadPerDepth > epsilon * aheadPerDepth;
         }
         float distance = dir * (blBundleCrossing(frame, node.depth, e, m) - depth);
-        if (distance > epsilon && distance < bestDistance && !mine) {
+        if (distance > epsilon && distance < bestDistance && !mine && ahead) {
             best = i;
             bestDistance = distance;
             crossing = depth + dir * distance;
         }
         i = node.next & kBundleIndexMask;
+    }
+    return best;
+}
+
+// ---- Contact taps: a closed room's creases (both the depth maps and the bundle walks) ----
+// Where a wall meets the ceiling of a closed room, the crease lies on the room's outline seen along
+// omega, and a wall point x within half a pixel of it can find nothing ahead on its pixel's centre
+// ray (it passes outside the room): light leaks in, paths escape. The other three pixels of x's
+// 2x2 footprint (blBundleContactTaps: toward the half of its pixel x lies in; a line that parts x
+// from its own centre leaves one of the four centres on x's side) then tell: a surface found
+// through `point` on a tap's centre ray with normal m (either sign) hides x from travel direction
+// d when
+//   (a) it lies in front of x's plane (`lit`: x's normal on d's side, |n . omega| = litCosine),
+//   (b) x's ray along d crosses its plane beyond the own-surface tolerance `epsilon`
+//       (blBundleContactAhead: both), and
+//   (c) the two planes meet within the footprint: their line of contact lies within
+//       sqrt(2) px / |n . omega| of x (blBundleContactNear, blBundleContactReach: the footprint's
+//       diagonal on x's plane, tangent capped).
+// A crease inside a closed room meets all three. A convex edge fails (a) (the other face lies
+// behind x's plane), the lit side of a contact line fails (b), an occluder's outline far beyond x
+// fails (c) (its plane does not meet x's near x): open scenes keep the centre's answer there. What
+// stays open: a hiding face that no centre of the footprint shows (seen nearly edge-on, or at the
+// corner where three outlines meet; tests/core/bundle/ClosedBoxCreaseTest.cpp counts them).
+
+// (a) and (b) above: the crossing's distance along d, or -1.
+float blBundleContactAhead(vec3 point, vec3 m, vec3 x, vec3 lit, float litCosine, vec3 d, float epsilon) {
+    float facing = dot(m, d);
+    if (facing == 0.0) {
+        return -1.0;
+    }
+    m = facing < 0.0 ? -m : m; // toward d: winding plays no part
+    float ahead = dot(point - x, lit);
+    float above = dot(point - x, m);
+    return ahead > epsilon * litCosine && above > epsilon * abs(facing) ? above / abs(facing) : -1.0;
+}
+
+// How far from a point (cosine = its plane's n . omega) a crease can lie for a footprint to see it.
+float blBundleContactReach(BundleFrame frame, float cosine) {
+    return 1.41421356 * frame.pixelSize * min(1.0 / max(abs(cosine), 1.0e-6), kBundleMaxOwnSurfaceTangent);
+}
+
+// (c) above: whether the plane through `point` (normal m) meets the plane through `anchor` (normal
+// anchorNormal) within `reach` of the anchor.
+bool blBundleContactNear(vec3 point, vec3 m, vec3 anchor, vec3 anchorNormal, float reach) {
+    float k = dot(m, anchorNormal);
+    float sine = sqrt(max(0.0, 1.0 - k * k));
+    return abs(dot(point - anchor, m)) <= reach * sine;
+}
+
+// The three taps of x's footprint (pixel: x's own, from blBundlePixel); a tap outside the frame's
+// tile is returned as (-1, -1).
+void blBundleContactTaps(BundleFrame frame, vec3 x, ivec2 pixel, out ivec2 taps[3]) {
+    vec2 inPixel = fract(blBundleGridPosition(frame, x).xy);
+    ivec2 step = ivec2(inPixel.x < 0.5 ? -1 : 1, inPixel.y < 0.5 ? -1 : 1);
+    taps[0] = pixel + ivec2(step.x, 0);
+    taps[1] = pixel + ivec2(0, step.y);
+    taps[2] = pixel + step;
+    for (int i = 0; i < 3; ++i) {
+        if (taps[i].x < 0 || taps[i].y < 0 || taps[i].x >= int(frame.width) || taps[i].y >= int(frame.height)) {
+            taps[i] = ivec2(-1);
+        }
+    }
+}
+
+// blBundleSurfaceNearest on a pool with hit payloads, with the footprint's taps (above) at both ends
+// of x's segment: a tap's fragment that hides x across a crease near x (nothing ahead on x's own
+// centre ray), or across a crease near the hit x's own list found, nearer than that hit (x's ray
+// meets a floor just before the back wall whose plane the centre ray found: the crease where they
+// meet lies within the footprint of the hit, (c) taken there with the hit's plane), wins;
+// kBundleNil if nothing. Without the second, the next vertex went on the back wall's plane beyond
+// the floor, outside a closed room. `hitPixel`: the pixel whose centre ray holds the fragment (x's
+// own, or a tap's), for a caller that places the hit on that ray; `crossing` as
+// blBundleSurfaceNearest (on x's own ray).
+uint blBundleSurfaceNearestAcrossCreases(BundleNodes nodes, BundleHeads heads, BundleHitPayload hits, uint own,
+                                         BundleFrame frame, ivec2 pixel, vec3 x, float depth, vec3 n, float dir,
+                                         out float crossing, out ivec2 hitPixel) {
+    hitPixel = pixel;
+    uint best = blBundleSurfaceNearest(nodes, blBundleHead(heads, frame, pixel), hits, true, own, frame, pixel, x,
+                                       depth, n, dir, crossing);
+    float cosine = dot(n, frame.direction);
+    vec3 d = dir * frame.direction;
+    vec3 lit = dot(n, d) < 0.0 ? -n : n;
+    float epsilon = blBundleSurfaceEpsilon(frame, cosine);
+    float reach = blBundleContactReach(frame, cosine);
+    // The far end: the own list's hit and its plane.
+    bool found = best != kBundleNil;
+    float bestDistance = found ? dir * (crossing - depth) : 3.0e38;
+    vec3 hitPoint = x + bestDistance * d;
+    vec3 hitNormal = found ? blUnpackOctahedral(hits.hits[best].normal) : n;
+    float hitReach = blBundleContactReach(frame, dot(hitNormal, frame.direction));
+    float ownDistance = bestDistance;
+    ivec2 taps[3];
+    blBundleContactTaps(frame, x, pixel, taps);
+    for (int t = 0; t < 3; ++t) {
+        if (taps[t].x < 0) {
+            continue;
+        }
+        vec3 ray = blBundlePixelRay(frame, vec2(taps[t]) + 0.5);
+        for (uint i = blBundleHead(heads, frame, taps[t]); i != kBundleNil;) {
+            BundleNode node = nodes.nodes[i];
+            BundleHit hit = hits.hits[i];
+            vec3 point = ray + node.depth * frame.direction;
+            vec3 m = blUnpackOctahedral(hit.normal);
+            float distance = hit.id != own ? blBundleContactAhead(point, m, x, lit, abs(cosine), d, epsilon) : -1.0;
+            if (distance >= 0.0 && distance < bestDistance &&
+                (blBundleContactNear(point, m, x, lit, reach) ||
+                 (found && distance < ownDistance && blBundleContactNear(point, m, hitPoint, hitNormal, hitReach)))) {
+                best = i;
+                bestDistance = distance;
+                hitPixel = taps[t];
+            }
+            i = node.next & kBundleIndexMask;
+        }
+    }
+    if (best != kBundleNil) {
+        crossing = depth + dir * bestDistance;
     }
     return best;
 }

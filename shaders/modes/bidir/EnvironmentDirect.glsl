@@ -2,9 +2,10 @@
 // ([TO12] section 3, Eq. 1-2; shaders/gpu/BundleEnvironmentLight.glsl): with E bundles along
 // directions omega_e drawn by Eq. 2's importance q, a point x with normal n uses d = +-omega_e on
 // its side, unoccluded when its bundle pixel's list has no surface beyond x along d (x's own
-// surface never counts, whatever its winding: bundle/Traversal.glsl, blBundleSurfaceNearest):
+// surface never counts, whatever its winding, and a closed room's creases keep the sky out:
+// bundle/Traversal.glsl, blBundleSurfaceNearestAcrossCreases):
 //   (1 / E) sum_e L_e(d) f(x, d, w_o) (n.d) V(x, d) / p_r(d),  p_r(d) = q(d) + q(-d).
-// Needs push.pool (BidirPush) and the Traversal helpers; a point outside an environment bundle's
+// Needs push.pool (BidirPush), the Traversal helpers and bidirSurfaceNearest (evaluate.comp.glsl); a point outside an environment bundle's
 // frame sets gOutsideBundle (its sample is dropped, as for the pairs' bundles).
 #include "modes/bidir/BidirEnvironment.h"
 #include "gpu/BundleEnvironmentLight.glsl"
@@ -32,12 +33,10 @@ vec3 bidirEnvironmentDirect(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo)
             gOutsideBundle = true;
             continue;
         }
-        BundleNodes nodes = BundleNodes(push.pool.nodes);
-        uint head = blBundleHead(blBundlePoolHeads(push.pool, slot), frame, bundlePixel);
         float unusedCrossing;
-        if (blBundleSurfaceNearest(nodes, head, BundleHitPayload(push.pool.payload),
-                                   push.pool.payloadKind == kBundlePayloadHit, gOwnTriangle, frame, bundlePixel, x,
-                                   depth, n, s.side, unusedCrossing) == kBundleNil) {
+        ivec2 unusedHitPixel;
+        if (bidirSurfaceNearest(BundleNodes(push.pool.nodes), slot, frame, bundlePixel, x, depth, n, s.side,
+                                unusedCrossing, unusedHitPixel) == kBundleNil) {
             sum += blBundleLightContribution(s, m, albedo, n, wo);
         }
     }

@@ -74,6 +74,22 @@ bool gOutsideBundle = false;
 // The camera point's triangle: its fragments in a pool with hit payloads are the point's own
 // surface, skipped by identity (blBundleSurfaceNearest).
 uint gOwnTriangle = kBundleNil;
+
+// The next surface from x along side * omega in bundle `slot`: with hit payloads across a closed
+// room's creases too (blBundleSurfaceNearestAcrossCreases; `hitPixel`: the pixel whose centre ray
+// holds it), else x's own pixel (blBundleSurfaceNearest, its planes taken parallel to x's).
+uint bidirSurfaceNearest(BundleNodes nodes, uint slot, BundleFrame frame, ivec2 bundlePixel, vec3 x, float depth,
+                         vec3 n, float side, out float crossing, out ivec2 hitPixel) {
+    BundleHeads heads = blBundlePoolHeads(push.pool, slot);
+    BundleHitPayload hits = BundleHitPayload(push.pool.payload);
+    hitPixel = bundlePixel;
+    if (push.pool.payloadKind == kBundlePayloadHit) {
+        return blBundleSurfaceNearestAcrossCreases(nodes, heads, hits, gOwnTriangle, frame, bundlePixel, x, depth, n,
+                                                   side, crossing, hitPixel);
+    }
+    return blBundleSurfaceNearest(nodes, blBundleHead(heads, frame, bundlePixel), hits, false, gOwnTriangle, frame,
+                                  bundlePixel, x, depth, n, side, crossing);
+}
 #include "modes/bidir/EnvironmentDirect.glsl"
 #include "modes/bidir/HitAlbedo.glsl"
 
@@ -238,11 +254,9 @@ vec3 bundleTerm(uint k, BidirVpl v, GpuMaterial mv, vec3 x, vec3 n, GpuMaterial 
         return vec3(0.0);
     }
     BundleNodes nodes = BundleNodes(push.pool.nodes);
-    uint head = blBundleHead(blBundlePoolHeads(push.pool, k), frame, bundlePixel);
     float unusedCrossing; // y stays on the centre ray (below)
-    uint hit = blBundleSurfaceNearest(nodes, head, BundleHitPayload(push.pool.payload),
-                                      push.pool.payloadKind == kBundlePayloadHit, gOwnTriangle, frame, bundlePixel, x,
-                                      depth, n, side, unusedCrossing);
+    ivec2 hitPixel = bundlePixel;
+    uint hit = bidirSurfaceNearest(nodes, k, frame, bundlePixel, x, depth, n, side, unusedCrossing, hitPixel);
     if (hit == kBundleNil) {
         return vec3(0.0); // escapes: environment light is not bidir's one-bounce term
     }
@@ -252,7 +266,7 @@ vec3 bundleTerm(uint k, BidirVpl v, GpuMaterial mv, vec3 x, vec3 n, GpuMaterial 
     // Not moved onto x's ray (where multibounce puts its next vertex): y is where VPLs connect, and
     // a point on the fragment's plane beyond its polygon made the unclamped two-bounce term spiky
     // (Bidir.TwoBounceUnclampedConvergesToReferenceIndirect2: region 7 +10.4% +- 7%, noise gate).
-    vec3 y = blBundlePixelRay(frame, vec2(bundlePixel) + 0.5) + nodes.nodes[hit].depth * frame.direction;
+    vec3 y = blBundlePixelRay(frame, vec2(hitPixel) + 0.5) + nodes.nodes[hit].depth * frame.direction;
     vec3 toX = x - y;
     float r2 = dot(toX, toX);
     if (!(r2 > 0.0)) {

@@ -7,7 +7,9 @@
 // directions), finds the point's place in its bundle pixel and the next fragment along d in the
 // depth-sorted list: that fragment's hit payload is the next vertex. No ray is traced. Fragments are ordered by where x's own ray crosses their
 // planes, x's own triangle skipped (bundle/Traversal.glsl: blBundleSurfaceNearest), so the
-// winding of the faces does not matter and thin walls do not leak. With random directions (and
+// winding of the faces does not matter and thin walls do not leak; where x's pixel has nothing
+// ahead, its footprint's contact taps find a closed room's crease (blBundleSurfaceNearestAcrossCreases)
+// so paths do not escape through it. With random directions (and
 // any sequence when K <= 8) the bundles are drawn without replacement along a path (blMultibouncePickBundle): d is never the
 // direction the path arrived along, and a path that has used all K <= 8 bundles ends. At every vertex: emission when the path meets an emitter's front face, point/spot light
 // by cube shadow maps, the area emitters by this iteration's emitter points (gpu/EmitterPointLight.glsl),
@@ -144,11 +146,12 @@ void tracePath(vec3 x0, uint own0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 e
         if (!blBundlePixel(frame, x, bundlePixel, depth)) {
             break; // outside the frame around the scene's bounding sphere: cannot happen for scene points
         }
-        uint head = blBundleHead(blBundlePoolHeads(push.pool, k), frame, bundlePixel);
         // Splat payload ids are point indices: no identity to skip by (their normals are the planes).
         uint ownId = push.pointsPerDirection == 0u ? own : kBundleNil;
         float crossing;
-        uint hit = blBundleSurfaceNearest(nodes, head, hits, true, ownId, frame, bundlePixel, x, depth, n, side, crossing);
+        ivec2 unusedHitPixel; // the next vertex goes on x's own ray
+        uint hit = blBundleSurfaceNearestAcrossCreases(nodes, blBundlePoolHeads(push.pool, k), hits, ownId, frame,
+                                                       bundlePixel, x, depth, n, side, crossing, unusedHitPixel);
         if (hit == kBundleNil) {
             if ((push.flags & kMultibounceEnvironment) != 0u) {
                 vec3 radiance = environmentRadiance(d);

@@ -32,7 +32,9 @@
 layout(local_size_x = kSkylightGroupSize, local_size_y = kSkylightGroupSize) in;
 
 layout(set = kSkylightSet, binding = kSkylightBindingFrame) uniform FrameBlock { BundleFrame frame; };
-layout(set = kSkylightSet, binding = kSkylightBindingDepthMap, r32f) uniform readonly image2D depthMap;
+layout(set = kSkylightSet, binding = kSkylightBindingDepthMap, rgba32f) uniform readonly image2D depthMap;
+#define BL_DEPTH_MAP_TEXEL(pixel, layer) imageLoad(depthMap, pixel)
+#include "bundle/DepthMapVisibility.glsl"
 layout(push_constant) uniform PushBlock { SkylightPush push; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SkylightIrradiance { vec4 entries[]; };
 
@@ -55,10 +57,9 @@ bool occluded(BlBundleLightSample s, ivec2 bundlePixel, vec3 x, float depth, vec
         return blBundleSurfaceNearest(BundleNodes(push.nodeAddress), head, BundleHitPayload(uvec2(0u)), false,
                                       kBundleNil, frame, bundlePixel, x, depth, n, s.side, unusedCrossing) != kBundleNil;
     }
-    // The map keeps the surface nearest the light: anything beyond the point's own surface along
-    // omega occludes it (no face test: a shadow map has no faces).
-    return imageLoad(depthMap, bundlePixel).r >
-           blBundleSurfaceDepth(frame, bundlePixel, x, depth, n) + blBundleSurfaceEpsilon(frame, s.cosine);
+    // The map keeps the surface nearest the light (bundle/DepthMapVisibility.glsl): only the
+    // direction toward omega can be tested.
+    return blDepthMapOccluded(frame, 0, bundlePixel, x, depth, n, dot(n, frame.direction));
 }
 
 void main() {

@@ -7,6 +7,8 @@
 #include "support/TestFiles.h"
 #include "support/VulkanTest.h"
 
+#include <cmath>
+
 using namespace bl;
 
 namespace {
@@ -15,10 +17,30 @@ constexpr std::uint32_t kResolution = 32; // bundle pixels per side
 
 class DepthMapPassTest : public test::VulkanTest {};
 
-std::vector<float> depths(const vk::Context& ctx, const vk::GpuImage& image) {
+// ao-blocks, its map, and the frame straight above it.
+struct AoBlocksMap {
+    explicit AoBlocksMap(const vk::Context& ctx)
+        : scene(loadScene(test::sourcePath("data/analytic/ao-blocks.toml"))), gpuScene(ctx, scene),
+          pass(ctx, gpuScene, kResolution),
+          above(bundleFrameForSphere(glm::vec3(0.0f, 1.0f, 0.0f), 0.0f, scene.bounds().center(), scene.bounds().radius(),
+                                     kResolution)) {}
+    Scene scene;
+    gpu::GpuScene gpuScene;
+    DepthMapPass pass;
+    shader::BundleFrame above;
+};
+
+// The map's texels: depth, then the surface's shading normal (-inf and 0 where empty).
+std::vector<glm::vec4> texels(const vk::Context& ctx, const vk::GpuImage& image) {
     std::vector<std::byte> raw = image.download(ctx, VK_IMAGE_LAYOUT_GENERAL);
-    const auto* texels = reinterpret_cast<const float*>(raw.data());
-    return {texels, texels + std::size_t(kResolution) * kResolution};
+    const auto* first = reinterpret_cast<const glm::vec4*>(raw.data());
+    return {first, first + std::size_t(kResolution) * kResolution};
+}
+
+std::vector<float> depths(const vk::Context& ctx, const vk::GpuImage& image) {
+    std::vector<float> out;
+    for (const glm::vec4& t : texels(ctx, image)) out.push_back(t.x);
+    return out;
 }
 
 std::size_t differing(const std::vector<float>& a, const std::vector<float>& b) {
@@ -30,12 +52,10 @@ std::size_t differing(const std::vector<float>& a, const std::vector<float>& b) 
 } // namespace
 
 TEST_F(DepthMapPassTest, TwoRecordsInOneCommandBufferSeeTheirOwnFrames) {
-    Scene scene = loadScene(test::sourcePath("data/analytic/ao-blocks.toml"));
-    gpu::GpuScene gpuScene(ctx(), scene);
-    DepthMapPass pass(ctx(), gpuScene, kResolution);
-    const Bounds bounds = scene.bounds();
-    const shader::BundleFrame above =
-        bundleFrameForSphere(glm::vec3(0.0f, 1.0f, 0.0f), 0.0f, bounds.center(), bounds.radius(), kResolution);
+    AoBlocksMap blocks(ctx());
+    DepthMapPass& pass = blocks.pass;
+    const shader::BundleFrame& above = blocks.above;
+    const Bounds bounds = blocks.scene.bounds();
     const shader::BundleFrame slanted = bundleFrameForSphere(glm::normalize(glm::vec3(1.0f, 0.5f, 0.3f)), 0.0f,
                                                              bounds.center(), bounds.radius(), kResolution);
 
@@ -56,4 +76,19 @@ TEST_F(DepthMapPassTest, TwoRecordsInOneCommandBufferSeeTheirOwnFrames) {
     EXPECT_EQ(differing(depths(ctx(), snapshot), aboveAlone), 0u)
         << "texels of the first record that saw another frame than its own";
     EXPECT_EQ(differing(depths(ctx(), pass.map()), slantedAlone), 0u);
+}
+
+// The map carries the surface's normal beside its depth (the visibility test's creases need it):
+// from straight above, ao-blocks shows only the floor and the blocks' tops, all horizontal.
+TEST_F(DepthMapPassTest, MapCarriesTheNormalOfTheSurfaceNearestTheLight) {
+    AoBlocksMap blocks(ctx());
+    ctx().submitAndWait([&](VkCommandBuffer cmd) { blocks.pass.record(cmd, blocks.above, 0.0, nullptr); });
+    std::size_t covered = 0, horizontal = 0;
+    for (const glm::vec4& t : texels(ctx(), blocks.pass.map())) {
+        if (!std::isfinite(t.x)) continue;
+        ++covered;
+        horizontal += std::abs(std::abs(t.z) - 1.0f) < 1e-5f ? 1 : 0;
+    }
+    EXPECT_GT(covered, std::size_t(kResolution) * kResolution / 4);
+    EXPECT_EQ(horizontal, covered) << "texels whose normal is not the floor's or a top's";
 }
