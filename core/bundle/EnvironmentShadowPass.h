@@ -2,7 +2,7 @@
 // shot for environments; the area emitters' counterpart is gpu/EmitterPointPass.h): each iteration
 // draws `count` directions by the environment's importance (DirectionSampler, Importance), uploads
 // them after a GpuEnvironmentShadowHeader (binding: buffer()) and renders an orthographic depth map
-// along each over the scene's bounding sphere (binding: maps(), an r32f 2D array, one layer per
+// along each over the scene's bounding sphere (binding: maps(), an rgba32f 2D array, depth and normal, one layer per
 // direction, read by shaders/gpu/EnvironmentShadowLight.glsl). The directions are a stratified
 // sequence over the run: iteration i takes the sequence's entries iK .. iK + K - 1.
 #pragma once

@@ -70,7 +70,7 @@ struct SkylightMode::Gpu {
     const gpu::GBufferPass* gbuffer = nullptr; // the camera pass's
     std::unique_ptr<BundleBuilder> builder;
     std::unique_ptr<DepthMapPass> depthMap; // visibility = depth_map
-    vk::GpuImage placeholder;               // r32f 1x1 bound as the depth map otherwise
+    vk::GpuImage placeholder;               // rgba32f 1x1 bound as the depth map otherwise
     std::unique_ptr<EnvironmentLight> environment;
     std::unique_ptr<DirectionSampler> directions;
     vk::Buffer irradiance; // control_variate = on: IrradianceTable entries
@@ -125,6 +125,8 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->builder = std::make_unique<BundleBuilder>(*ctx, *g->scene, options);
     const bool depthMapVisibility = mOptions.depthMapVisibility;
     if (depthMapVisibility) {
+        ctx->requireDeviceMemory(DepthMapPass::bytesFor(mOptions.bundleResolution, 0),
+                                 "skylight's depth map at " + std::to_string(mOptions.bundleResolution) + "^2");
         g->depthMap = std::make_unique<DepthMapPass>(*ctx, *g->scene, mOptions.bundleResolution);
     } else {
         g->placeholder = vk::GpuImage(*ctx, {1, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});

@@ -28,7 +28,6 @@ bool blDepthMapOccluded(BundleFrame frame, int layer, ivec2 pixel, vec3 x, float
     }
     float epsilon = blBundleSurfaceEpsilon(frame, cosine);
     vec3 lit = cosine < 0.0 ? -n : n;
-    float reach = blBundleContactReach(frame, cosine);
     ivec2 taps[3];
     blBundleContactTaps(frame, x, pixel, taps);
     for (int i = 0; i < 3; ++i) {
@@ -39,7 +38,7 @@ bool blDepthMapOccluded(BundleFrame frame, int layer, ivec2 pixel, vec3 x, float
         vec3 point = blBundlePixelRay(frame, vec2(taps[i]) + 0.5) + texel.x * frame.direction;
         if (texel.x > -3.0e38 &&
             blBundleContactAhead(point, texel.yzw, x, lit, abs(cosine), frame.direction, epsilon) >= 0.0 &&
-            blBundleContactNear(point, texel.yzw, x, lit, reach)) {
+            blBundleContactNearX(frame, point, texel.yzw, x, lit, cosine)) {
             return true;
         }
     }

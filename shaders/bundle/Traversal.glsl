@@ -181,9 +181,10 @@ uint blBundleSurfaceNearest(BundleNodes nodes, uint head, BundleHitPayload hits,
 //   (a) it lies in front of x's plane (`lit`: x's normal on d's side, |n . omega| = litCosine),
 //   (b) x's ray along d crosses its plane beyond the own-surface tolerance `epsilon`
 //       (blBundleContactAhead: both), and
-//   (c) the two planes meet within the footprint: their line of contact lies within
-//       sqrt(2) px / |n . omega| of x (blBundleContactNear, blBundleContactReach: the footprint's
-//       diagonal on x's plane, tangent capped).
+//   (c) the two planes meet within the footprint (blBundleContactNearX for visibility,
+//       blBundleContactNearBoth for the walks, which also refuse surfaces seen within the tangent
+//       cap of their plane: a plane nearly along omega crosses the footprint's depth in a fraction
+//       of a pixel and says little about where its surface is).
 // A crease inside a closed room meets all three. A convex edge fails (a) (the other face lies
 // behind x's plane), the lit side of a contact line fails (b), an occluder's outline far beyond x
 // fails (c) (its plane does not meet x's near x): open scenes keep the centre's answer there. What
@@ -202,17 +203,39 @@ float blBundleContactAhead(vec3 point, vec3 m, vec3 x, vec3 lit, float litCosine
     return ahead > epsilon * litCosine && above > epsilon * abs(facing) ? above / abs(facing) : -1.0;
 }
 
-// How far from a point (cosine = its plane's n . omega) a crease can lie for a footprint to see it.
-float blBundleContactReach(BundleFrame frame, float cosine) {
-    return 1.41421356 * frame.pixelSize * min(1.0 / max(abs(cosine), 1.0e-6), kBundleMaxOwnSurfaceTangent);
+// (c) for visibility (the depth maps): whether the plane through `point` (normal m) meets x's
+// plane (through x, normal n, cosine = n . omega) within sqrt(2) px / |cosine| of x, the footprint's
+// diagonal on x's plane (tangent capped). A surface whose plane meets x's near x but which itself
+// stays far away in its plane (a box's bottom face, high beside x's wall) can only darken x within
+// the footprint of that surface's outline; and a closed room is kept dark also by a wall whose
+// plane x's ray crosses just after the face it leaves through, which (c) for the walks refuses.
+bool blBundleContactNearX(BundleFrame frame, vec3 point, vec3 m, vec3 x, vec3 n, float cosine) {
+    float k = dot(m, n);
+    float sine = sqrt(max(0.0, 1.0 - k * k));
+    float reach = 1.41421356 * frame.pixelSize * min(1.0 / max(abs(cosine), 1.0e-6), kBundleMaxOwnSurfaceTangent);
+    return abs(dot(point - x, m)) <= reach * sine;
 }
 
-// (c) above: whether the plane through `point` (normal m) meets the plane through `anchor` (normal
-// anchorNormal) within `reach` of the anchor.
-bool blBundleContactNear(vec3 point, vec3 m, vec3 anchor, vec3 anchorNormal, float reach) {
-    float k = dot(m, anchorNormal);
-    float sine = sqrt(max(0.0, 1.0 - k * k));
-    return abs(dot(point - anchor, m)) <= reach * sine;
+// (c) for the walks, which put the hit on the surface's plane: whether the plane through `anchor`
+// (normal anchorNormal) and the plane through `point` (normal m) meet along a line that passes
+// within sqrt(2) px (the diagonal of the 2x2 cell of pixel centres around the anchor's projection;
+// a line crossing the cell passes that near every corner) of both points, measured in projection
+// along omega. Parallel planes never meet. Both points: a face whose plane meets x's near x but
+// which stays far away in its plane would put the hit in the air.
+bool blBundleContactNearBoth(BundleFrame frame, vec3 point, vec3 m, vec3 anchor, vec3 anchorNormal) {
+    vec3 line = cross(anchorNormal, m);
+    float sine = length(line);
+    if (sine < 1.0e-4) {
+        return false;
+    }
+    line /= sine;
+    // Each point's distance to the line within its own plane, then that offset's projection.
+    float anchorToLine = abs(dot(point - anchor, m)) / sine;
+    float pointToLine = abs(dot(anchor - point, anchorNormal)) / sine;
+    float c0 = dot(cross(line, anchorNormal), frame.direction);
+    float c1 = dot(cross(line, m), frame.direction);
+    float limit = 1.41421356 * frame.pixelSize;
+    return anchorToLine * sqrt(max(0.0, 1.0 - c0 * c0)) <= limit && pointToLine * sqrt(max(0.0, 1.0 - c1 * c1)) <= limit;
 }
 
 // The three taps of x's footprint (pixel: x's own, from blBundlePixel); a tap outside the frame's
@@ -232,9 +255,10 @@ void blBundleContactTaps(BundleFrame frame, vec3 x, ivec2 pixel, out ivec2 taps[
 
 // blBundleSurfaceNearest on a pool with hit payloads, with the footprint's taps (above) at both ends
 // of x's segment: a tap's fragment that hides x across a crease near x (nothing ahead on x's own
-// centre ray), or across a crease near the hit x's own list found, nearer than that hit (x's ray
-// meets a floor just before the back wall whose plane the centre ray found: the crease where they
-// meet lies within the footprint of the hit, (c) taken there with the hit's plane), wins;
+// centre ray), or across a concave crease near the hit x's own list found, nearer than that hit
+// (x's ray meets a floor just before the back wall whose plane the centre ray found: the crease
+// where they meet lies within the footprint of the hit, (a) and (c) taken there with the hit's
+// plane), wins;
 // kBundleNil if nothing. Without the second, the next vertex went on the back wall's plane beyond
 // the floor, outside a closed room. `hitPixel`: the pixel whose centre ray holds the fragment (x's
 // own, or a tap's), for a caller that places the hit on that ray; `crossing` as
@@ -249,13 +273,14 @@ uint blBundleSurfaceNearestAcrossCreases(BundleNodes nodes, BundleHeads heads, B
     vec3 d = dir * frame.direction;
     vec3 lit = dot(n, d) < 0.0 ? -n : n;
     float epsilon = blBundleSurfaceEpsilon(frame, cosine);
-    float reach = blBundleContactReach(frame, cosine);
     // The far end: the own list's hit and its plane.
     bool found = best != kBundleNil;
     float bestDistance = found ? dir * (crossing - depth) : 3.0e38;
     vec3 hitPoint = x + bestDistance * d;
     vec3 hitNormal = found ? blUnpackOctahedral(hits.hits[best].normal) : n;
-    float hitReach = blBundleContactReach(frame, dot(hitNormal, frame.direction));
+    hitNormal = dot(hitNormal, d) > 0.0 ? -hitNormal : hitNormal; // toward x's side
+    float hitCosine = abs(dot(hitNormal, frame.direction));
+    float hitEpsilon = blBundleSurfaceEpsilon(frame, hitCosine) * hitCosine;
     float ownDistance = bestDistance;
     ivec2 taps[3];
     blBundleContactTaps(frame, x, pixel, taps);
@@ -269,10 +294,14 @@ uint blBundleSurfaceNearestAcrossCreases(BundleNodes nodes, BundleHeads heads, B
             BundleHit hit = hits.hits[i];
             vec3 point = ray + node.depth * frame.direction;
             vec3 m = blUnpackOctahedral(hit.normal);
-            float distance = hit.id != own ? blBundleContactAhead(point, m, x, lit, abs(cosine), d, epsilon) : -1.0;
-            if (distance >= 0.0 && distance < bestDistance &&
-                (blBundleContactNear(point, m, x, lit, reach) ||
-                 (found && distance < ownDistance && blBundleContactNear(point, m, hitPoint, hitNormal, hitReach)))) {
+            bool usable = hit.id != own && abs(dot(m, frame.direction)) * kBundleMaxOwnSurfaceTangent >= 1.0;
+            float distance = usable ? blBundleContactAhead(point, m, x, lit, abs(cosine), d, epsilon) : -1.0;
+            // The far end's crease must be concave as x sees it: the tap's surface lies on x's
+            // side of the found plane (the side face of a convex edge whose top x's ray lands on
+            // lies behind it, and its plane is crossed in the air above the edge).
+            bool farEnd = found && distance < ownDistance && dot(point - hitPoint, hitNormal) > hitEpsilon &&
+                          blBundleContactNearBoth(frame, point, m, hitPoint, hitNormal);
+            if (distance >= 0.0 && distance < bestDistance && (blBundleContactNearBoth(frame, point, m, x, lit) || farEnd)) {
                 best = i;
                 bestDistance = distance;
                 hitPixel = taps[t];

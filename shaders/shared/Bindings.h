@@ -40,12 +40,12 @@ BL_CONST uint kRasterBindingShadowMaps = 1u; // storage image 2D array (r32f), l
 BL_CONST uint kRasterBindingEmitterPoints = 2u;     // storage GpuEmitterPoint[] (EmitterPointPass)
 BL_CONST uint kRasterBindingEmitterShadowMaps = 3u; // storage image 2D array (r32f), 6 layers per emitter point
 BL_CONST uint kRasterBindingEnvironmentShadows = 4u;    // storage GpuEnvironmentShadow[] (EnvironmentShadowPass)
-BL_CONST uint kRasterBindingEnvironmentShadowMaps = 5u; // storage image 2D array (r32f), a depth map per direction
+BL_CONST uint kRasterBindingEnvironmentShadowMaps = 5u; // storage image 2D array (rgba32f: depth, normal), a depth map per direction
 
 // Skylight visibility pass, set 1.
 BL_CONST uint kSkylightSet = 1u;
 BL_CONST uint kSkylightBindingFrame = 0u;    // uniform BundleFrame of this direction (and tile)
-BL_CONST uint kSkylightBindingDepthMap = 1u; // storage image (r32f): visibility = depth_map
+BL_CONST uint kSkylightBindingDepthMap = 1u; // storage image (rgba32f: depth, normal): visibility = depth_map
 
 BL_NAMESPACE_END
 #endif

@@ -108,7 +108,7 @@ BL_CONST uint kAtlasFirstShotBindingMaps2 = 2u;  // the same image as map 1, whi
 // The environment's part (environment_shots = K > 0): K directions drawn by its importance, a depth
 // map each (bundle/EnvironmentShadowPass.h; off: no directions, placeholders bound).
 BL_CONST uint kAtlasFirstShotBindingEnvironment = 3u;     // GpuEnvironmentShadowHeader + GpuEnvironmentShadow[]
-BL_CONST uint kAtlasFirstShotBindingEnvironmentMaps = 4u; // their depth maps (r32f 2D array)
+BL_CONST uint kAtlasFirstShotBindingEnvironmentMaps = 4u; // their depth maps (rgba32f 2D array: depth, normal)
 
 
 BL_CONST uint kAtlasDirectSet = 0u;

@@ -18,7 +18,7 @@ BL_CONST uint kMultibounceBindingTextures = 5u;   // storage uint[]: packed albe
 BL_CONST uint kMultibounceBindingEmitterPoints = 6u;     // storage GpuEmitterPointHeader + GpuEmitterPoint[]
 BL_CONST uint kMultibounceBindingEmitterShadowMaps = 7u; // storage image 2D array (r32f), 6 layers per emitter point
 BL_CONST uint kMultibounceBindingEnvironmentShadows = 8u;    // storage GpuEnvironmentShadowHeader + GpuEnvironmentShadow[]
-BL_CONST uint kMultibounceBindingEnvironmentShadowMaps = 9u; // storage image 2D array (r32f), a depth map per direction
+BL_CONST uint kMultibounceBindingEnvironmentShadowMaps = 9u; // storage image 2D array (rgba32f: depth, normal), a depth map per direction
 
 // MultibouncePush::flags.
 BL_CONST uint kMultibounceEnvironment = 1u; // the scene has an environment: escaping paths gather it

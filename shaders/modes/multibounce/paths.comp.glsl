@@ -161,10 +161,11 @@ void tracePath(vec3 x0, uint own0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 e
         }
         BundleNode node = nodes.nodes[hit];
         BundleHit payload = hits.hits[hit];
-        // The next vertex lies on x's own ray, on the plane of the fragment found on the bundle
-        // pixel's centre ray (up to half a pixel beside it): where that plane is not the surface
-        // x's ray meets (edges, curvature within the pixel), the bundle-resolution bias, which
-        // shrinks with the pixel size. The payload (normal, UV) is the centre ray's.
+        // The next vertex lies on x's own ray, on the plane of the fragment found on the centre ray
+        // of x's bundle pixel or of one of its footprint's taps (up to 1.4 px beside it): where
+        // that plane is not the surface x's ray meets (edges, curvature within the pixel), the
+        // bundle-resolution bias, which shrinks with the pixel size. The payload (normal, UV) is
+        // that centre ray's.
         float distance = abs(crossing - depth);
         x += (crossing - depth) * frame.direction;
         wo = -d;
