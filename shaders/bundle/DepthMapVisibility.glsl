@@ -34,10 +34,12 @@ bool blDepthMapOccluded(BundleFrame frame, int layer, ivec2 pixel, vec3 x, float
         if (taps[i].x < 0) {
             continue;
         }
-        vec4 texel = BL_DEPTH_MAP_TEXEL(taps[i], layer); // depth -inf: nothing in that pixel
+        vec4 texel = BL_DEPTH_MAP_TEXEL(taps[i], layer);
+        if (!(texel.x > -3.0e38)) {
+            continue; // depth -inf: nothing in that pixel
+        }
         vec3 point = blBundlePixelRay(frame, vec2(taps[i]) + 0.5) + texel.x * frame.direction;
-        if (texel.x > -3.0e38 &&
-            blBundleContactAhead(point, texel.yzw, x, lit, abs(cosine), frame.direction, epsilon) >= 0.0 &&
+        if (blBundleContactAhead(point, texel.yzw, x, lit, abs(cosine), frame.direction, epsilon) >= 0.0 &&
             blBundleContactNearX(frame, point, texel.yzw, x, lit, cosine)) {
             return true;
         }

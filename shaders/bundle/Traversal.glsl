@@ -258,8 +258,7 @@ void blBundleContactTaps(BundleFrame frame, vec3 x, ivec2 pixel, out ivec2 taps[
 // centre ray), or across a concave crease near the hit x's own list found, nearer than that hit
 // (x's ray meets a floor just before the back wall whose plane the centre ray found: the crease
 // where they meet lies within the footprint of the hit, (a) and (c) taken there with the hit's
-// plane), wins;
-// kBundleNil if nothing. Without the second, the next vertex went on the back wall's plane beyond
+// plane), wins; kBundleNil if nothing. Without the second, the next vertex went on the back wall's plane beyond
 // the floor, outside a closed room. `hitPixel`: the pixel whose centre ray holds the fragment (x's
 // own, or a tap's), for a caller that places the hit on that ray; `crossing` as
 // blBundleSurfaceNearest (on x's own ray).
@@ -276,7 +275,7 @@ uint blBundleSurfaceNearestAcrossCreases(BundleNodes nodes, BundleHeads heads, B
     // The far end: the own list's hit and its plane.
     bool found = best != kBundleNil;
     float bestDistance = found ? dir * (crossing - depth) : 3.0e38;
-    vec3 hitPoint = x + bestDistance * d;
+    vec3 hitPoint = found ? x + bestDistance * d : x;
     vec3 hitNormal = found ? blUnpackOctahedral(hits.hits[best].normal) : n;
     hitNormal = dot(hitNormal, d) > 0.0 ? -hitNormal : hitNormal; // toward x's side
     float hitCosine = abs(dot(hitNormal, frame.direction));
@@ -290,23 +289,27 @@ uint blBundleSurfaceNearestAcrossCreases(BundleNodes nodes, BundleHeads heads, B
         }
         vec3 ray = blBundlePixelRay(frame, vec2(taps[t]) + 0.5);
         for (uint i = blBundleHead(heads, frame, taps[t]); i != kBundleNil;) {
+            uint index = i;
             BundleNode node = nodes.nodes[i];
             BundleHit hit = hits.hits[i];
             vec3 point = ray + node.depth * frame.direction;
             vec3 m = blUnpackOctahedral(hit.normal);
             bool usable = hit.id != own && abs(dot(m, frame.direction)) * kBundleMaxOwnSurfaceTangent >= 1.0;
             float distance = usable ? blBundleContactAhead(point, m, x, lit, abs(cosine), d, epsilon) : -1.0;
+            i = node.next & kBundleIndexMask;
+            if (distance < 0.0 || distance >= bestDistance) {
+                continue; // most fragments: the crease tests below only for a nearer candidate
+            }
             // The far end's crease must be concave as x sees it: the tap's surface lies on x's
             // side of the found plane (the side face of a convex edge whose top x's ray lands on
             // lies behind it, and its plane is crossed in the air above the edge).
             bool farEnd = found && distance < ownDistance && dot(point - hitPoint, hitNormal) > hitEpsilon &&
                           blBundleContactNearBoth(frame, point, m, hitPoint, hitNormal);
-            if (distance >= 0.0 && distance < bestDistance && (blBundleContactNearBoth(frame, point, m, x, lit) || farEnd)) {
-                best = i;
+            if (farEnd || blBundleContactNearBoth(frame, point, m, x, lit)) {
+                best = index;
                 bestDistance = distance;
                 hitPixel = taps[t];
             }
-            i = node.next & kBundleIndexMask;
         }
     }
     if (best != kBundleNil) {

@@ -14,20 +14,14 @@ layout(local_size_x = 64) in;
 
 layout(push_constant) uniform PushBlock {
     BundlePoolView pool;
-    uvec2 queries;
-    uvec2 results;
-    uint count;
-    uint centreOnly;
+    BoxQueryPush box;
 } push;
 
 void main() {
-    uint item = gl_GlobalInvocationID.x;
-    if (item >= push.count) {
+    vec3 x, n;
+    if (!blBoxQuery(push.box, x, n)) {
         return;
     }
-    BoxQuery q = BoxQueries(push.queries).queries[item];
-    vec3 x = q.position.xyz;
-    vec3 n = q.normal.xyz;
     BundleFrame frame = blBundlePoolFrame(push.pool, 0u);
     BundleHeads heads = blBundlePoolHeads(push.pool, 0u);
     BundleNodes nodes = BundleNodes(push.pool.nodes);
@@ -40,7 +34,7 @@ void main() {
     if (blBundlePixel(frame, x, pixel, depth)) {
         float crossing;
         ivec2 hitPixel;
-        uint hit = push.centreOnly != 0u
+        uint hit = push.box.centreOnly != 0u
                        ? blBundleSurfaceNearest(nodes, blBundleHead(heads, frame, pixel), hits, true, kBundleNil, frame,
                                                 pixel, x, depth, n, dir, crossing)
                        : blBundleSurfaceNearestAcrossCreases(nodes, heads, hits, kBundleNil, frame, pixel, x, depth, n,
@@ -48,6 +42,7 @@ void main() {
         result = hit != kBundleNil ? 1u : 0u;
         distance = dir * (crossing - depth);
     }
-    BoxAnswers(push.results).answers[item] = result;
-    BoxAnswers(push.results).answers[push.count + item] = floatBitsToUint(distance);
+    uint item = gl_GlobalInvocationID.x;
+    BoxAnswers(push.box.results).answers[item] = result;
+    BoxAnswers(push.box.results).answers[push.box.count + item] = floatBitsToUint(distance);
 }

@@ -15,29 +15,21 @@ layout(set = 0, binding = 1) uniform FrameBlock { BundleFrame frame; };
 
 #include "tests/BoxQueries.glsl"
 
-layout(push_constant) uniform PushBlock {
-    uvec2 queries;
-    uvec2 results;
-    uint count;
-    uint centreOnly;
-} push;
+layout(push_constant) uniform PushBlock { BoxQueryPush box; } push;
 
 void main() {
-    uint item = gl_GlobalInvocationID.x;
-    if (item >= push.count) {
+    vec3 x, n;
+    if (!blBoxQuery(push.box, x, n)) {
         return;
     }
-    BoxQuery q = BoxQueries(push.queries).queries[item];
-    vec3 x = q.position.xyz;
-    vec3 n = q.normal.xyz;
     ivec2 pixel;
     float depth;
     uint result = 2u;
     if (blBundlePixel(frame, x, pixel, depth)) {
         float cosine = dot(n, frame.direction);
-        bool hidden = push.centreOnly != 0u ? blDepthMapCentreOccluded(frame, 0, pixel, x, depth, n, cosine)
+        bool hidden = push.box.centreOnly != 0u ? blDepthMapCentreOccluded(frame, 0, pixel, x, depth, n, cosine)
                                             : blDepthMapOccluded(frame, 0, pixel, x, depth, n, cosine);
         result = hidden ? 1u : 0u;
     }
-    BoxAnswers(push.results).answers[item] = result;
+    BoxAnswers(push.box.results).answers[gl_GlobalInvocationID.x] = result;
 }

@@ -68,7 +68,8 @@ struct Query {
     glm::vec4 normal;
 };
 
-struct VisibilityPush {
+// shaders/tests/BoxQueries.glsl: the push constants both query shaders share.
+struct BoxQueryPush {
     glm::uvec2 queries;
     glm::uvec2 results;
     std::uint32_t count;
@@ -77,10 +78,7 @@ struct VisibilityPush {
 
 struct CreasePush {
     shader::BundlePoolView pool;
-    glm::uvec2 queries;
-    glm::uvec2 results;
-    std::uint32_t count;
-    std::uint32_t centreOnly;
+    BoxQueryPush box;
 };
 static_assert(sizeof(CreasePush) == 88, "push block of bundle_crease.comp.glsl");
 
@@ -327,8 +325,7 @@ protected:
     }
 
     // The query pass's push addresses, count and variant.
-    template <typename Push>
-    void address(Push& push, std::uint32_t centreOnly) {
+    void address(BoxQueryPush& push, std::uint32_t centreOnly) {
         push.queries = splitAddress(deviceAddress(ctx(), queryBuffer));
         push.results = splitAddress(deviceAddress(ctx(), resultBuffer));
         push.count = static_cast<std::uint32_t>(queries.size());
@@ -375,9 +372,9 @@ protected:
             for (std::uint32_t centreOnly = 0; centreOnly < 2; ++centreOnly) {
                 CreasePush push{};
                 push.pool = pool.view();
-                address(push, centreOnly);
+                address(push.box, centreOnly);
                 judge(frame, centreOnly, answer([&](VkCommandBuffer cmd) {
-                          pass.dispatch(cmd, push, vk::groupCount(push.count, kGroupSize));
+                          pass.dispatch(cmd, push, vk::groupCount(push.box.count, kGroupSize));
                       }));
             }
         }
@@ -405,13 +402,13 @@ TEST_F(ClosedBoxCrease, DepthMapHidesTheInsideAndShowsTheOutside) {
     vk::Buffer frameBuffer(ctx(), sizeof(shader::BundleFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
     vk::BoundSet bound(ctx().device(), {vk::Bound::storageImage(0, pass.map().view()),
                                         vk::Bound::uniformBuffer(1, frameBuffer.get())});
-    vk::ComputePass<VisibilityPush> visibility(ctx().device(), kSpv_tests_depth_map_visibility_comp, {bound.layout()});
+    vk::ComputePass<BoxQueryPush> visibility(ctx().device(), kSpv_tests_depth_map_visibility_comp, {bound.layout()});
     Counts inner[2], outer[2]; // [0]: with the taps, [1]: the centre alone
     for (std::uint32_t k = 0; k < kDirections; ++k) {
         const shader::BundleFrame frame = frameFor(k);
         std::memcpy(frameBuffer.data(), &frame, sizeof(frame));
         for (std::uint32_t centreOnly = 0; centreOnly < 2; ++centreOnly) {
-            VisibilityPush push{};
+            BoxQueryPush push{};
             address(push, centreOnly);
             const VkDescriptorSet sets[] = {bound.set()};
             const std::vector<std::uint32_t> answers = answer([&](VkCommandBuffer cmd) {
