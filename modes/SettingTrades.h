@@ -4,7 +4,10 @@
 // the first three from the points the camera sees (a coarse grid of primary rays):
 //   shadow cube   the 4x4-PCF receiver-plane lookup of shaders/gpu/ShadowCubeLookup.glsl, replayed
 //                 with rays along each tap's texel centre ray, against exact shadow rays: the
-//                 relative error of the visible points' direct irradiance (shadowCubeError).
+//                 relative error of the visible points' direct irradiance (shadowCubeError). The
+//                 lookup's crease rule is not replayed: it changes only points within two texels of
+//                 a crease on the outline of a room lit from outside (tests/core/gpu/
+//                 ShadowCubeCreaseTest.cpp), where the filter alone leaks.
 //   bundle pixel  the bundle query of shaders/bundle/Traversal.glsl (blBundleSurfaceNearest without
 //                 payload, as skylight: the fragments of the pixel's centre ray, up to 0.71 px
 //                 beside x, placed where x's own ray crosses x's plane through them), replayed with

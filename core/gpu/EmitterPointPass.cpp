@@ -12,8 +12,8 @@ constexpr float kLiftFraction = 1e-4f;
 } // namespace
 
 VkDeviceSize EmitterPointPass::bytesFor(std::uint32_t count, std::uint32_t resolution) {
-    return VkDeviceSize(count) * ShadowCubePass::kFaces * resolution * resolution * sizeof(float) +
-           VkDeviceSize(resolution) * resolution * sizeof(float) + sizeof(shader::GpuEmitterPointHeader) + count * sizeof(shader::GpuEmitterPoint);
+    return ShadowCubePass::bytesFor(resolution, count) + sizeof(shader::GpuEmitterPointHeader) +
+           count * sizeof(shader::GpuEmitterPoint);
 }
 
 EmitterPointPass::EmitterPointPass(const vk::Context& ctx, const GpuScene& gpuScene, const Scene& scene,

@@ -5,13 +5,14 @@
 
 #include <gpu/shadow_cube.frag.spv.h>
 #include <gpu/shadow_cube.vert.spv.h>
-#include <limits>
 
 namespace bl::gpu {
 
 namespace {
-constexpr VkFormat kDistanceFormat = VK_FORMAT_R32_SFLOAT;
+constexpr VkFormat kTexelFormat = VK_FORMAT_R16G16B16A16_UINT; // shaders/gpu/ShadowTexel.glsl
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+// ShadowTexel.glsl's texel for "nothing along this ray": +inf (0x7f800000 as two halves), no normal.
+constexpr VkClearColorValue kNothing{.uint32 = {0x0000u, 0x7f80u, 0x8000u, 0x8000u}};
 } // namespace
 
 bool ShadowCubePass::refreshFor(const vk::Context& ctx, GpuScene& scene, double time) {
@@ -45,7 +46,7 @@ ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, st
     VkDevice device = ctx.device();
     // Without cubes a 1x1 placeholder keeps the shading pass's descriptors valid.
     const std::uint32_t side = mCubes ? resolution : 1;
-    mMaps = vk::GpuImage(ctx, {side, side, kFaces * std::max(mCubes, 1u), kDistanceFormat,
+    mMaps = vk::GpuImage(ctx, {side, side, kFaces * std::max(mCubes, 1u), kTexelFormat,
                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, true});
     mDepth = vk::GpuImage(ctx, {side, side, 1, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
     mPipelineLayout = vk::makePipelineLayout(device, {}, sizeof(shader::ShadowPush),
@@ -54,19 +55,18 @@ ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, st
     desc.vertexShader = kSpv_gpu_shadow_cube_vert;
     desc.fragmentShader = kSpv_gpu_shadow_cube_frag;
     desc.vertexBindings = GpuScene::vertexBindings();
-    desc.vertexAttributes = {GpuScene::vertexAttributes()[0]}; // positions only
-    desc.colorFormats = {kDistanceFormat};
+    desc.vertexAttributes = GpuScene::vertexAttributes(); // positions and normals
+    desc.colorFormats = {kTexelFormat};
     desc.depthFormat = kDepthFormat;
     desc.layout = mPipelineLayout.get();
     mPipeline = vk::makeGraphicsPipeline(device, desc);
 
-    // Every cube starts as "nothing in the way" (+inf) in GENERAL, so a cube never rendered reads
+    // Every cube starts as "nothing in the way" (+inf, no normal) in GENERAL, so a cube never rendered reads
     // as unshadowed, and each record changes the layout of its own layers only.
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         vk::transitionImage(cmd, mMaps.get(), vk::ImageTransition{});
-        const VkClearColorValue nothing{{std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f}};
         const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
-        vkCmdClearColorImage(cmd, mMaps.get(), VK_IMAGE_LAYOUT_GENERAL, &nothing, 1, &all);
+        vkCmdClearColorImage(cmd, mMaps.get(), VK_IMAGE_LAYOUT_GENERAL, &kNothing, 1, &all);
     });
 }
 
@@ -108,7 +108,7 @@ void ShadowCubePass::recordCube(VkCommandBuffer cmd, const glm::vec3& position, 
         vk::transitionImage(cmd, mDepth.get(), vk::toDepthAttachment());
         vk::RenderTargets targets;
         targets.colors = {mMaps.layerView(kFaces * cube + face)};
-        targets.clearColor = {{std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f}};
+        targets.clearColor = kNothing;
         targets.depth = mDepth.view();
         targets.extent = {mResolution, mResolution};
         vk::beginRendering(cmd, targets);

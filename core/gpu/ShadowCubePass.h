@@ -1,6 +1,6 @@
-// Omnidirectional shadow maps: six faces per cube, in one r32f 2D-array image (layers 6 c .. 6 c + 5
+// Omnidirectional shadow maps: six faces per cube, in one rgba16ui 2D-array image (layers 6 c .. 6 c + 5
 // = cube c), each texel the distance from the cube's centre to the nearest surface along its centre
-// ray (+inf where nothing). Cubes 0 .. L-1 belong to the scene's point and spot lights (record with
+// ray (+inf where nothing) and that surface's normal (shaders/gpu/ShadowTexel.glsl). Cubes 0 .. L-1 belong to the scene's point and spot lights (record with
 // a time); any cube can instead be rendered from an arbitrary point (record with a position), e.g.
 // a virtual point light. Face bases are CubeFaces.h's, shared with the lookups
 // (shaders/gpu/ShadowCubeLookup.glsl). After a record the image is in VK_IMAGE_LAYOUT_GENERAL.
@@ -44,6 +44,14 @@ public:
     std::uint32_t cubeCount() const { return mCubes; }
 
     static constexpr std::uint32_t kFaces = 6;
+    static constexpr std::uint32_t kBytesPerTexel = 8; // ShadowTexel.glsl: distance and normal
+
+    // Device memory of `cubes` cubes of `resolution`^2 texels a face and the depth buffer they are
+    // rendered with (for Context::requireDeviceMemory).
+    static VkDeviceSize bytesFor(std::uint32_t resolution, std::uint64_t cubes) {
+        const VkDeviceSize face = VkDeviceSize(resolution) * resolution;
+        return face * kFaces * kBytesPerTexel * cubes + face * sizeof(float);
+    }
 
 private:
     ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution, std::uint32_t cubes,

@@ -134,11 +134,10 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
         log::warn("atlas: " + std::to_string(g->link.tables.degenerateTriangles) +
                   " triangles have no atlas area; their hits exchange nothing");
     }
-    const auto shadowSide = static_cast<VkDeviceSize>(mOptions.shadowResolution);
     const auto lightSamples = static_cast<VkDeviceSize>(mOptions.lightSamples);
     const VkDeviceSize lightBytes = scene.lights.empty()
                                         ? 0
-                                        : shadowSide * shadowSide * 8 * 6 * scene.lights.size() +
+                                        : gpu::ShadowCubePass::bytesFor(mOptions.shadowResolution, scene.lights.size()) +
                                               VkDeviceSize(g->link.texelCount) * (lightSamples * lightSamples * 32 + 4);
     g->exchange.split = mPlan.runs(kPassDelayedIndirect);
     ctx->requireDeviceMemory(VkDeviceSize(g->link.texelCount) * (kBytesPerTexel + (g->exchange.split ? kSplitBytesPerTexel : 0)) +
@@ -216,7 +215,7 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     g->exchange.exchangePass = vk::ComputePass<shader::AtlasExchangePush>(device, kSpv_modes_atlas_exchange_comp);
     g->exchange.updatePass = vk::ComputePass<shader::AtlasUpdatePush>(device, kSpv_modes_atlas_update_comp);
     if (!scene.lights.empty()) {
-        g->direct.shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
+        g->direct.shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, mOptions.shadowResolution);
         g->direct.directSet = vk::BoundSet(
             device, {vk::Bound::storageBuffer(shader::kAtlasDirectBindingLights, g->scene->lightBuffer()),
                      vk::Bound::storageImage(shader::kAtlasDirectBindingShadowMaps, g->direct.shadows->maps().view())});

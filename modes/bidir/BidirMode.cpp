@@ -110,24 +110,22 @@ void BidirMode::setScene(const Scene& scene, vk::Context* ctx) {
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
     const BidirOptions& o = mOptions;
     const std::uint32_t pairs = o.pairs;
-    const auto shadowSide = static_cast<VkDeviceSize>(o.shadowResolution);
-    const auto vplSide = static_cast<VkDeviceSize>(o.vplShadowResolution);
     const std::uint32_t strategy = o.strategy;
     const std::uint32_t points = o.emitterPoints;
     const std::uint32_t pointSide = o.emitterShadowResolution;
     const bool areaLit = mPlan.runs(kBidirPassEmitterPoints);
     ctx->requireDeviceMemory(VkDeviceSize(width) * height * gpu::CameraPass::bytesPerPixel(shader::kBidirAccumLayers) +
-                                 shadowSide * shadowSide * 4 * (6 * scene.lights.size() + 1) +
-                                 vplSide * vplSide * 4 * (6 * pairs + 1) +
+                                 gpu::ShadowCubePass::bytesFor(o.shadowResolution, scene.lights.size()) +
+                                 gpu::ShadowCubePass::bytesFor(o.vplShadowResolution, pairs) +
                                  (areaLit ? gpu::EmitterPointPass::bytesFor(points, pointSide) : 0),
                              "bidir at " + std::to_string(width) + "x" + std::to_string(height));
     auto g = std::make_unique<Gpu>();
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
     g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kBidirAccumLayers);
-    g->light.shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
+    g->light.shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, o.shadowResolution);
     // The constructor wants room for the lights' cubes too; VPL cubes use slots 0 .. K-1 only.
     const auto vplCubes = std::max<std::uint32_t>(pairs, g->light.shadows->lightCount());
-    g->light.vplShadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(vplSide), vplCubes);
+    g->light.vplShadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, o.vplShadowResolution, vplCubes);
     g->light.vpls = std::make_unique<VplSampler>(scene, mPlan.runs(kBidirPassAreaVpls));
     g->light.emitterPoints = std::make_unique<gpu::EmitterPointPass>(*ctx, *g->scene, scene, areaLit ? points : 0u, pointSide);
     if (o.rsmVpls && g->light.shadows->lightCount() > 0) {

@@ -196,9 +196,8 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     mPlan = plan(scene);
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
-    const auto shadowSide = static_cast<VkDeviceSize>(mOptions.shadowResolution);
     ctx->requireDeviceMemory(VkDeviceSize(width) * height * gpu::CameraPass::bytesPerPixel(shader::kMultibounceAccumLayers) +
-                                 shadowSide * shadowSide * 4 * (6 * scene.lights.size() + 1) +
+                                 gpu::ShadowCubePass::bytesFor(mOptions.shadowResolution, scene.lights.size()) +
                                  (mPlan.runs(kPassEmitterPoints)
                                       ? gpu::EmitterPointPass::bytesFor(mOptions.emitterPointCount(), mOptions.emitterShadowResolution)
                                       : 0) +
@@ -210,7 +209,7 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     auto g = std::make_unique<Gpu>();
     g->scene = std::make_unique<gpu::GpuScene>(*ctx, scene);
     g->camera = std::make_unique<gpu::CameraPass>(*ctx, *g->scene, width, height, shader::kMultibounceAccumLayers);
-    g->lights.shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, static_cast<std::uint32_t>(shadowSide));
+    g->lights.shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, mOptions.shadowResolution);
     g->lights.emitterPoints = std::make_unique<gpu::EmitterPointPass>(
         *ctx, *g->scene, scene, mPlan.runs(kPassEmitterPoints) ? mOptions.emitterPointCount() : 0u,
         mOptions.emitterShadowResolution);

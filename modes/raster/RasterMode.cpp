@@ -101,14 +101,13 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
     const auto width = static_cast<std::uint32_t>(scene.camera.resolution.x);
     const auto height = static_cast<std::uint32_t>(scene.camera.resolution.y);
 
-    // G-buffer, accumulation, shadow cubes (r32f) + their depth.
+    // G-buffer, accumulation, shadow cubes + their depth.
     const VkDeviceSize pixels = VkDeviceSize(width) * height;
-    const VkDeviceSize shadowSide = mOptions.shadowResolution;
     const VkDeviceSize lights = scene.lights.size();
     const std::uint32_t points = mOptions.emitterPoints;
     const std::uint32_t pointSide = mOptions.emitterShadowResolution;
     ctx->requireDeviceMemory(pixels * gpu::CameraPass::bytesPerPixel(shader::kRasterAccumLayers) +
-                                 shadowSide * shadowSide * 4 * (6 * lights + 1) +
+                                 gpu::ShadowCubePass::bytesFor(mOptions.shadowResolution, lights) +
                                  (mPlan.runs(kPassEmitterPoints) ? gpu::EmitterPointPass::bytesFor(points, pointSide) : 0) +
                                  (mPlan.runs(kPassEnvironmentShadows)
                                       ? EnvironmentShadowPass::bytesFor(mOptions.environmentShots,

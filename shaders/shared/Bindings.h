@@ -36,9 +36,9 @@ BL_CONST uint kCameraBindingAccum = 4u;       // storage image array (rgba32f), 
 // Raster shading pass, set 1.
 BL_CONST uint kRasterSet = 1u;
 BL_CONST uint kRasterBindingLights = 0u;     // storage GpuLight[]
-BL_CONST uint kRasterBindingShadowMaps = 1u; // storage image 2D array (r32f), layers 6 l .. 6 l + 5 = light l
+BL_CONST uint kRasterBindingShadowMaps = 1u; // storage image 2D array (rgba16ui, gpu/ShadowTexel.glsl), layers 6 l .. 6 l + 5 = light l
 BL_CONST uint kRasterBindingEmitterPoints = 2u;     // storage GpuEmitterPoint[] (EmitterPointPass)
-BL_CONST uint kRasterBindingEmitterShadowMaps = 3u; // storage image 2D array (r32f), 6 layers per emitter point
+BL_CONST uint kRasterBindingEmitterShadowMaps = 3u; // storage image 2D array (rgba16ui, gpu/ShadowTexel.glsl), 6 layers per emitter point
 BL_CONST uint kRasterBindingEnvironmentShadows = 4u;    // storage GpuEnvironmentShadow[] (EnvironmentShadowPass)
 BL_CONST uint kRasterBindingEnvironmentShadowMaps = 5u; // storage image 2D array (rgba32f: depth, normal), a depth map per direction
 

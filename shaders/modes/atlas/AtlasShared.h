@@ -113,7 +113,7 @@ BL_CONST uint kAtlasFirstShotBindingEnvironmentMaps = 4u; // their depth maps (r
 
 BL_CONST uint kAtlasDirectSet = 0u;
 BL_CONST uint kAtlasDirectBindingLights = 0u;     // GpuLight[] storage buffer
-BL_CONST uint kAtlasDirectBindingShadowMaps = 1u; // r32f 2D-array storage image (ShadowCubePass)
+BL_CONST uint kAtlasDirectBindingShadowMaps = 1u; // rgba16ui 2D-array storage image (ShadowCubePass, gpu/ShadowTexel.glsl)
 
 // What a texel side sends under interleaved transfer, in parts that change only where the side
 // received light: the sender radiance is base + sum / W + glossy (AtlasBuffers.glsl:

@@ -12,11 +12,11 @@ BL_NAMESPACE_BEGIN
 // Evaluation pass, set 1.
 BL_CONST uint kBidirSet = 1u;
 BL_CONST uint kBidirBindingLights = 0u;     // storage GpuLight[] (at the frame's time)
-BL_CONST uint kBidirBindingShadowMaps = 1u; // storage image 2D array (r32f): cube l = light l
-BL_CONST uint kBidirBindingVplMaps = 2u;    // storage image 2D array (r32f): cube k = VPL k
+BL_CONST uint kBidirBindingShadowMaps = 1u; // storage image 2D array (rgba16ui): cube l = light l
+BL_CONST uint kBidirBindingVplMaps = 2u;    // storage image 2D array (rgba16ui): cube k = VPL k
 BL_CONST uint kBidirBindingVpls = 3u;       // storage BidirVpl[pairs]
 BL_CONST uint kBidirBindingEmitterPoints = 4u;    // storage GpuEmitterPoint header + points (EmitterPoints.h)
-BL_CONST uint kBidirBindingEmitterShadowMaps = 5u; // storage image 2D array (r32f): cube k = emitter point k
+BL_CONST uint kBidirBindingEmitterShadowMaps = 5u; // storage image 2D array (rgba16ui): cube k = emitter point k
 BL_CONST uint kBidirBindingFrame = 8u;      // rgba32f 2D array: the frame's layers for interleaving (Interleave.h)
 BL_CONST uint kBidirBindingInterleave = 12u; // storage InterleaveEvaluate (Interleave.h; the push block is full)
 

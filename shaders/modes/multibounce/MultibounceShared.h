@@ -10,13 +10,13 @@ BL_NAMESPACE_BEGIN
 // Path pass, set 1.
 BL_CONST uint kMultibounceSet = 1u;
 BL_CONST uint kMultibounceBindingLights = 0u;     // storage GpuLight[]
-BL_CONST uint kMultibounceBindingShadowMaps = 1u; // storage image 2D array (r32f), 6 layers per light
+BL_CONST uint kMultibounceBindingShadowMaps = 1u; // storage image 2D array (rgba16ui, gpu/ShadowTexel.glsl), 6 layers per light
 BL_CONST uint kMultibounceBindingEmitters = 2u;   // storage MultibounceEmitter[] (one per draw)
 BL_CONST uint kMultibounceBindingPoints = 3u;     // storage MultibouncePoint[] (imperfect bundles)
 BL_CONST uint kMultibounceBindingSplats = 4u;     // storage BundleSplat[] (imperfect bundles: the centres)
 BL_CONST uint kMultibounceBindingTextures = 5u;   // storage uint[]: packed albedo textures (shared/PackedTextures.h)
 BL_CONST uint kMultibounceBindingEmitterPoints = 6u;     // storage GpuEmitterPointHeader + GpuEmitterPoint[]
-BL_CONST uint kMultibounceBindingEmitterShadowMaps = 7u; // storage image 2D array (r32f), 6 layers per emitter point
+BL_CONST uint kMultibounceBindingEmitterShadowMaps = 7u; // storage image 2D array (rgba16ui, gpu/ShadowTexel.glsl), 6 layers per emitter point
 BL_CONST uint kMultibounceBindingEnvironmentShadows = 8u;    // storage GpuEnvironmentShadowHeader + GpuEnvironmentShadow[]
 BL_CONST uint kMultibounceBindingEnvironmentShadowMaps = 9u; // storage image 2D array (rgba32f: depth, normal), a depth map per direction
 

@@ -33,6 +33,7 @@
 #include "bundle/DepthMapPass.h"
 #include "bundle/DirectionSampler.h"
 #include "scene/SceneLoader.h"
+#include "support/BoxQueries.h"
 #include "support/TestFiles.h"
 #include "support/VulkanTest.h"
 #include "vk/BoundSet.h"
@@ -63,61 +64,15 @@ constexpr int kAlongEdge = 48;     // edge points per edge
 constexpr int kAcrossEdge = 16;    // edge points within two map pixels of the edge
 constexpr glm::vec2 kInnerBox{0.35f, 0.65f}; // the convex box inside the room: [0.35, 0.65]^3
 
-struct Query {
-    glm::vec4 position;
-    glm::vec4 normal;
-};
-
-// shaders/tests/BoxQueries.glsl: the push constants both query shaders share.
-struct BoxQueryPush {
-    glm::uvec2 queries;
-    glm::uvec2 results;
-    std::uint32_t count;
-    std::uint32_t centreOnly;
-};
+using test::BoxPoint;
+using test::BoxQueryPush;
+using Query = test::BoxQuery;
 
 struct CreasePush {
     shader::BundlePoolView pool;
     BoxQueryPush box;
 };
 static_assert(sizeof(CreasePush) == 88, "push block of bundle_crease.comp.glsl");
-
-struct BoxPoint {
-    glm::vec3 position;
-    glm::vec3 outward;
-};
-
-// Points on the unit box's faces: a grid, and points within `band` of every edge.
-std::vector<BoxPoint> boxPoints(float band) {
-    std::vector<BoxPoint> points;
-    for (int axis = 0; axis < 3; ++axis) {
-        for (int side = 0; side < 2; ++side) {
-            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-            auto add = [&](float a, float b) {
-                glm::vec3 p(0.0f), n(0.0f);
-                p[axis] = float(side);
-                p[u] = a;
-                p[v] = b;
-                n[axis] = side == 0 ? -1.0f : 1.0f;
-                points.push_back({p, n});
-            };
-            for (int i = 0; i < kGrid; ++i) {
-                for (int j = 0; j < kGrid; ++j) add((i + 0.5f) / kGrid, (j + 0.5f) / kGrid);
-            }
-            for (int i = 0; i < kAlongEdge; ++i) {
-                const float along = (i + 0.37f) / kAlongEdge;
-                for (int j = 0; j < kAcrossEdge; ++j) {
-                    const float across = band * (j + 0.5f) / kAcrossEdge;
-                    add(across, along);
-                    add(1.0f - across, along);
-                    add(along, across);
-                    add(along, 1.0f - across);
-                }
-            }
-        }
-    }
-    return points;
-}
 
 // blBundleSurfaceEpsilon (shaders/bundle/Traversal.glsl) on the host.
 float surfaceEpsilon(const shader::BundleFrame& frame, float cosine) {
@@ -305,7 +260,7 @@ protected:
             scene.meshes.push_back(inner);
         }
         bounds = scene.bounds();
-        points = boxPoints(2.0f * 2.0f * bounds.radius() / kResolution);
+        points = test::boxPoints(kGrid, kAlongEdge, kAcrossEdge, 2.0f * 2.0f * bounds.radius() / kResolution);
         queries.clear();
         for (int side = 0; side < 2; ++side) {
             if (side == 0 ? !outward : !inward) continue;

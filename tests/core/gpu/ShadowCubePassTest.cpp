@@ -31,12 +31,14 @@ float distanceToFloor(float height, std::uint32_t i, std::uint32_t j) {
 // Largest relative error of cube `cube`'s -y face against a floor `height` below its centre.
 float worstFloorError(const vk::Context& ctx, const gpu::ShadowCubePass& pass, std::uint32_t cube, float height) {
     std::vector<std::byte> raw = pass.maps().download(ctx, VK_IMAGE_LAYOUT_GENERAL, 6 * cube + kDownFace);
+    // shaders/gpu/ShadowTexel.glsl: per texel the distance's float bits, then the packed normal.
     const auto* stored = reinterpret_cast<const float*>(raw.data());
+    constexpr std::uint32_t kStride = gpu::ShadowCubePass::kBytesPerTexel / sizeof(float);
     float worst = 0.0f;
     for (std::uint32_t j = 0; j < kResolution; ++j) {
         for (std::uint32_t i = 0; i < kResolution; ++i) {
             const float expected = distanceToFloor(height, i, j);
-            worst = std::max(worst, std::abs(stored[j * kResolution + i] - expected) / expected);
+            worst = std::max(worst, std::abs(stored[kStride * (j * kResolution + i)] - expected) / expected);
         }
     }
     return worst;
