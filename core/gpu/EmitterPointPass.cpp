@@ -19,7 +19,8 @@ VkDeviceSize EmitterPointPass::bytesFor(std::uint32_t count, std::uint32_t resol
 EmitterPointPass::EmitterPointPass(const vk::Context& ctx, const GpuScene& gpuScene, const Scene& scene,
                                    std::uint32_t count, std::uint32_t resolution)
     : mSampler(scene), mRequested(mSampler.empty() ? 0u : count), mLift(kLiftFraction * gpuScene.radius()),
-      mCubes(ShadowCubePass::forPositions(ctx, gpuScene, resolution, mRequested)),
+      // One tap per point (EmitterPointLight.glsl): no crease rule, so no normals.
+      mCubes(ShadowCubePass::forPositions(ctx, gpuScene, resolution, mRequested, false)),
       mBuffer(ctx, sizeof(shader::GpuEmitterPointHeader) + sizeof(shader::GpuEmitterPoint) * std::max(mRequested, 1u),
               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload) {
     upload(); // a valid header (no points) until the first prepare()

@@ -29,15 +29,15 @@ ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, st
 
 ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution,
                                std::uint32_t cubes)
-    : ShadowCubePass(ctx, scene, resolution, cubes, static_cast<std::uint32_t>(scene.lights().size())) {}
+    : ShadowCubePass(ctx, scene, resolution, cubes, static_cast<std::uint32_t>(scene.lights().size()), true) {}
 
 ShadowCubePass ShadowCubePass::forPositions(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution,
-                                            std::uint32_t cubes) {
-    return ShadowCubePass(ctx, scene, resolution, cubes, 0u);
+                                            std::uint32_t cubes, bool normals) {
+    return ShadowCubePass(ctx, scene, resolution, cubes, 0u, normals);
 }
 
 ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution,
-                               std::uint32_t cubes, std::uint32_t lights)
+                               std::uint32_t cubes, std::uint32_t lights, bool normals)
     : mScene(&scene), mResolution(resolution), mLightCount(lights), mCubes(cubes) {
     if (mCubes < mLightCount) {
         throw Error("shadow cubes: " + std::to_string(mCubes) + " cube(s) cannot hold the scene's " +
@@ -59,6 +59,7 @@ ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, st
     desc.colorFormats = {kTexelFormat};
     desc.depthFormat = kDepthFormat;
     desc.layout = mPipelineLayout.get();
+    desc.specialization = {normals ? 1u : 0u}; // kShadowSpecNormals
     mPipeline = vk::makeGraphicsPipeline(device, desc);
 
     // Every cube starts as "nothing in the way" (+inf, no normal) in GENERAL, so a cube never rendered reads

@@ -21,9 +21,11 @@ public:
     ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution);
     ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution, std::uint32_t cubes);
     // `cubes` cubes for record(cmd, position, ...) alone, however many lights the scene has: the
-    // per-light record and refreshFor do nothing (e.g. points sampled on emitters).
+    // per-light record and refreshFor do nothing (e.g. points sampled on emitters). Without
+    // `normals` the texels hold no normal (ShadowTexel.glsl's "none"): enough for cubes read by
+    // one-tap lookups only, which have no crease rule, and cheaper to render.
     static ShadowCubePass forPositions(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution,
-                                       std::uint32_t cubes);
+                                       std::uint32_t cubes, bool normals = true);
 
     // Renders every light's cube (cube l = light l) at scene `time`.
     void record(VkCommandBuffer cmd, double time, vk::GpuTimer* timer);
@@ -55,7 +57,7 @@ public:
 
 private:
     ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution, std::uint32_t cubes,
-                   std::uint32_t lights);
+                   std::uint32_t lights, bool normals);
     // Renders the six faces of `cube` from `position`, leaving its layers in GENERAL.
     void recordCube(VkCommandBuffer cmd, const glm::vec3& position, std::uint32_t cube, double time);
 

@@ -4,6 +4,19 @@
 
 namespace bl::vk {
 
+namespace {
+// The specialization of constants constant_id = 0, 1, ... to `values` (32 bits each); `entries`
+// holds the map the result points to.
+VkSpecializationInfo specializationInfo(std::span<const std::uint32_t> values,
+                                        std::vector<VkSpecializationMapEntry>& entries) {
+    entries.resize(values.size());
+    for (std::uint32_t i = 0; i < entries.size(); ++i) {
+        entries[i] = {i, static_cast<std::uint32_t>(i * sizeof(std::uint32_t)), sizeof(std::uint32_t)};
+    }
+    return {static_cast<std::uint32_t>(entries.size()), entries.data(), values.size_bytes(), values.data()};
+}
+} // namespace
+
 ShaderModule makeShaderModule(VkDevice device, std::span<const std::uint32_t> spirv) {
     VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     info.codeSize = spirv.size_bytes();
@@ -37,6 +50,11 @@ Pipeline makeGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& d) {
     stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
     stages[1].module = fs.get();
     stages[1].pName = "main";
+    std::vector<VkSpecializationMapEntry> entries;
+    const VkSpecializationInfo specialization = specializationInfo(d.specialization, entries);
+    for (VkPipelineShaderStageCreateInfo& stage : stages) {
+        stage.pSpecializationInfo = d.specialization.empty() ? nullptr : &specialization;
+    }
 
     VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     vertexInput.vertexBindingDescriptionCount = static_cast<std::uint32_t>(d.vertexBindings.size());
@@ -97,20 +115,16 @@ Pipeline makeGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& d) {
 }
 
 Pipeline makeComputePipeline(VkDevice device, std::span<const std::uint32_t> spirv, VkPipelineLayout layout,
-                             std::span<const std::uint32_t> specialization) {
+                             std::span<const std::uint32_t> values) {
     ShaderModule module = makeShaderModule(device, spirv);
-    std::vector<VkSpecializationMapEntry> entries(specialization.size());
-    for (std::uint32_t i = 0; i < entries.size(); ++i) {
-        entries[i] = {i, static_cast<std::uint32_t>(i * sizeof(std::uint32_t)), sizeof(std::uint32_t)};
-    }
-    const VkSpecializationInfo specializationInfo{static_cast<std::uint32_t>(entries.size()), entries.data(),
-                                                  specialization.size_bytes(), specialization.data()};
+    std::vector<VkSpecializationMapEntry> entries;
+    const VkSpecializationInfo specialization = specializationInfo(values, entries);
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module.get();
     info.stage.pName = "main";
-    info.stage.pSpecializationInfo = specialization.empty() ? nullptr : &specializationInfo;
+    info.stage.pSpecializationInfo = values.empty() ? nullptr : &specialization;
     info.layout = layout;
     VkPipeline raw = VK_NULL_HANDLE;
     BL_VK_CHECK(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &raw));

@@ -28,6 +28,8 @@ struct GraphicsPipelineDesc {
     bool depthWrite = true;
     VkCullModeFlags cullMode = VK_CULL_MODE_NONE; // surfaces are two-sided
     VkPipelineLayout layout = VK_NULL_HANDLE;
+    // Specialization constants constant_id = 0, 1, ... of both stages (as makeComputePipeline's).
+    std::vector<std::uint32_t> specialization;
 };
 
 Pipeline makeGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc);

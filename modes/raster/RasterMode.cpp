@@ -134,8 +134,12 @@ void RasterMode::setScene(const Scene& scene, vk::Context* ctx) {
                  vk::Bound::storageBuffer(shader::kRasterBindingEnvironmentShadows, g->environmentShadows->buffer()),
                  vk::Bound::storageImage(shader::kRasterBindingEnvironmentShadowMaps,
                                          g->environmentShadows->maps().view())});
+    std::vector<std::uint32_t> specialization(shader::kRasterSpecCount);
+    specialization[shader::kRasterSpecPointLights] = scene.lights.empty() ? 0u : 1u;
+    specialization[shader::kRasterSpecEmitterPoints] = mPlan.runs(kPassEmitterPoints) ? 1u : 0u;
+    specialization[shader::kRasterSpecEnvironment] = mPlan.runs(kPassEnvironmentShadows) ? 1u : 0u;
     g->shade = vk::ComputePass<shader::RasterPush>(device, kSpv_modes_raster_shade_comp,
-                                                   {g->camera->setLayout(), g->bound.layout()});
+                                                   {g->camera->setLayout(), g->bound.layout()}, specialization);
     mGpu = std::move(g);
 }
 

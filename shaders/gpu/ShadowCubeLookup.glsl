@@ -130,9 +130,10 @@ void blShadowTapTexel(vec2 tap, uint face, vec3 r, vec3 u, vec3 f, uint resoluti
 // x's side of the other wall (its taps beyond the wall were in shadow already) and on the light's
 // side, a convex edge has no candidate (the other face lies behind x's plane), and an occluder far
 // from x fails (c): open scenes keep the filter's answer. Only footprints with taps both lit and in
-// shadow (penumbrae) run it. A filter of one tap (emitter points, vpl_shadow_taps = 1) has no
-// footprint: its tap, where lit, is judged with the surfaces of x's 2x2 footprint (toward the half
-// of its texel x lies in, as the depth maps' contact taps).
+// shadow (penumbrae) run it. A filter of one tap (emitter points, vpl_shadow_taps = 1) has none:
+// its crease leak stays (rooms lit from outside by area lights; the test counts it). Judging its
+// tap with the surfaces of x's 2x2 footprint closes it, but costs every such lookup four probes on
+// a SIMD CPU driver: raster's shade pass x1.6 on the area-lit Cornell box.
 // It runs only where a lit tap sees something other than x's plane (kShadowPastPlane: a leak's taps
 // pass outside the room; a lit tap that sees x's own planar surface, as nearly all do, needs no
 // rule), which keeps its cost to the few such footprints on a GPU. A SIMD CPU driver (lavapipe)
@@ -175,21 +176,14 @@ bool blShadowCreaseNearBoth(vec3 p, vec3 n, vec3 q, vec3 m, vec3 ray, float res)
            blShadowAcrossRay(pToLine, line, p / length(p)) <= limit * length(p);
 }
 
-// The overrule for the lit taps of a filter of taps x taps of map `map` around st on face `face`
-// (basis r, u, f), mixed or (one tap) lit: how many of its lit taps the crease rule puts in
-// shadow. p: the receiver relative to the cube's centre; n: its normal toward the light.
-// Probe t of the rule's side x side footprint around st: its centre ray and packed texel; false
-// where its ray runs parallel to or behind x's plane (lit without a receiver point), or where
-// `filterOnly` and it is not a tap of the filter.
+// The overrule for the lit taps of a mixed filter of taps x taps (2 to 4) of map `map` around st
+// on face `face` (basis r, u, f): how many of its lit taps the crease rule puts in shadow. p: the receiver relative to the cube's centre; n: its normal toward the light.
+// Tap t of the filter's taps x taps around st: its centre ray and packed texel; false where its ray
+// runs parallel to or behind x's plane (lit without a receiver point).
 bool blShadowCreaseProbe(uint map, uint firstLayer, uint resolution, uint face, vec3 r, vec3 u, vec3 f, vec2 st,
-                         vec3 n, int side, int taps, int t, bool filterOnly, out vec3 ray, out uvec4 packed) {
-    float centre = 0.5 * float(side - 1);
-    vec2 tap = st + vec2(float(t % side) - centre, float(t / side) - centre);
-    ray = vec3(0.0);
-    packed = uvec4(0u);
-    if (filterOnly && taps == 1 && ivec2(floor(tap)) != ivec2(floor(st))) {
-        return false; // the one tap of a one-tap filter is x's own texel
-    }
+                         vec3 n, int taps, int t, out vec3 ray, out uvec4 packed) {
+    float centre = 0.5 * float(taps - 1);
+    vec2 tap = st + vec2(float(t % taps) - centre, float(t / taps) - centre);
     uint tapFace;
     vec3 tr, tu, tf;
     ivec2 texel;
@@ -201,8 +195,7 @@ bool blShadowCreaseProbe(uint map, uint firstLayer, uint resolution, uint face, 
 
 int blShadowCreaseOverrules(uint map, uint firstLayer, uint resolution, uint face, vec3 r, vec3 u, vec3 f, vec2 st,
                             vec3 p, vec3 n, const int taps) {
-    const int side = max(taps, 2); // the footprint whose surfaces in shadow count
-    const int count = side * side;
+    const int count = taps * taps;
     float res = float(resolution);
     float epsilon = kShadowRelativeBias * length(p);
     float onPlaneTolerance = kShadowOnPlane * length(p);
@@ -213,7 +206,7 @@ int blShadowCreaseOverrules(uint map, uint firstLayer, uint resolution, uint fac
     for (int t = 0; t < count; ++t) {
         vec3 ray;
         uvec4 packed;
-        if (!blShadowCreaseProbe(map, firstLayer, resolution, face, r, u, f, st, n, side, taps, t, false, ray, packed)) {
+        if (!blShadowCreaseProbe(map, firstLayer, resolution, face, r, u, f, st, n, taps, t, ray, packed)) {
             continue;
         }
         float stored = blShadowTexelDistance(packed);
@@ -242,7 +235,7 @@ int blShadowCreaseOverrules(uint map, uint firstLayer, uint resolution, uint fac
     for (int t = 0; t < count; ++t) {
         vec3 ray;
         uvec4 packed;
-        if (!blShadowCreaseProbe(map, firstLayer, resolution, face, r, u, f, st, n, side, taps, t, true, ray, packed)) {
+        if (!blShadowCreaseProbe(map, firstLayer, resolution, face, r, u, f, st, n, taps, t, ray, packed)) {
             continue;
         }
         float receiver = dot(p, n) / dot(ray, n);
@@ -307,7 +300,7 @@ float blShadowFilter(uint map, uint firstLayer, uint resolution, vec3 p, vec3 n,
         blShadowTapTexel(tap, face, r, u, f, resolution, tapFace, tr, tu, tf, texel);
         lit += blShadowTap(map, firstLayer + tapFace, texel, tr, tu, tf, res, p, n, pastPlane);
     }
-    if (creaseRule && pastPlane && lit > 0.0 && (lit < float(taps * taps) || taps == 1)) {
+    if (creaseRule && taps > 1 && pastPlane && lit > 0.0 && lit < float(taps * taps)) {
         lit -= float(blShadowCreaseOverrules(map, firstLayer, resolution, face, r, u, f, st, p, n, taps));
     }
     return lit / float(taps * taps);

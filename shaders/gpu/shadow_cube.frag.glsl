@@ -8,6 +8,7 @@
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inNormal;
 layout(push_constant) uniform PushBlock { ShadowPush push; };
+layout(constant_id = kShadowSpecNormals) const bool kNormals = true;
 layout(location = 0) out uvec4 outTexel;
 
-void main() { outTexel = blPackShadowTexel(length(inWorld - push.lightPosition), inNormal); }
+void main() { outTexel = blPackShadowTexel(length(inWorld - push.lightPosition), kNormals ? inNormal : vec3(0.0)); }

@@ -9,13 +9,14 @@
 layout(location = 0) in vec4 inPositionU;
 layout(location = 1) in vec4 inNormalV;
 layout(push_constant) uniform PushBlock { ShadowPush push; };
+layout(constant_id = kShadowSpecNormals) const bool kNormals = true;
 layout(location = 0) out vec3 outWorld;
 layout(location = 1) out vec3 outNormal;
 
 void main() {
     vec3 world = (push.model * vec4(inPositionU.xyz, 1.0)).xyz;
     outWorld = world;
-    outNormal = mat3(push.model) * inNormalV.xyz; // rigid transforms (as depth_map.vert.glsl)
+    outNormal = kNormals ? mat3(push.model) * inNormalV.xyz : vec3(0.0); // rigid transforms (as depth_map.vert.glsl)
     vec3 p = world - push.lightPosition;
     vec3 r, u, f;
     blCubeFaceBasis(push.face, r, u, f);

@@ -93,6 +93,9 @@ struct ShadowPush {
     uint pad2;
 };
 BL_STATIC_ASSERT(sizeof(ShadowPush) == 96, "ShadowPush layout");
+// Specialization constant of the shadow cube shaders: 1 to store each texel's surface normal (the
+// crease rule of multi-tap lookups needs it), 0 to leave it out (cubes only one-tap lookups read).
+BL_CONST uint kShadowSpecNormals = 0u;
 
 BL_NAMESPACE_END
 #endif

@@ -22,5 +22,13 @@ BL_CONST uint kRasterAccumLayers = (1u << kPathEmitted) | (1u << kPathDirect);
 
 BL_CONST uint kRasterGroupSize = 8u;
 
+// Specialization constants of the shading pass: which kinds of light the scene's plan runs (1) or
+// leaves out (0). A SIMD CPU driver (lavapipe) runs a loop's body at least once under a lane mask
+// even with no light to loop over, so each kind left out is compiled out instead.
+BL_CONST uint kRasterSpecPointLights = 0u;   // point and spot lights (their shadow cubes)
+BL_CONST uint kRasterSpecEmitterPoints = 1u; // emitter points (area emitters)
+BL_CONST uint kRasterSpecEnvironment = 2u;   // environment directions
+BL_CONST uint kRasterSpecCount = 3u;
+
 BL_NAMESPACE_END
 #endif

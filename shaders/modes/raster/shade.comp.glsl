@@ -27,6 +27,9 @@ layout(local_size_x = kRasterGroupSize, local_size_y = kRasterGroupSize) in;
 
 layout(set = kRasterSet, binding = kRasterBindingLights) readonly buffer LightBlock { GpuLight lights[]; };
 layout(push_constant) uniform PushBlock { RasterPush push; };
+layout(constant_id = kRasterSpecPointLights) const bool kPointLights = true;
+layout(constant_id = kRasterSpecEmitterPoints) const bool kEmitterPoints = true;
+layout(constant_id = kRasterSpecEnvironment) const bool kEnvironmentShots = true;
 
 vec3 directLight(vec3 position, vec3 n, GpuMaterial m, vec3 albedo) {
     vec3 wo = normalize(camera.position - position);
@@ -63,8 +66,14 @@ void main() {
     layers[kPathEmitted] = imageLoad(gbuffer[kGBufferEmission], pixel).rgb;
     GpuMaterial material = materials[uint(normalMaterial.w)];
     vec3 wo = normalize(camera.position - position);
-    layers[kPathDirect] = directLight(position, normalMaterial.xyz, material, albedo) +
-                          blEmitterPointsLight(position, normalMaterial.xyz, material, albedo, wo, 0.0) +
-                          blEnvironmentShadowLight(position, normalMaterial.xyz, material, albedo, wo, 0.0);
+    if (kPointLights) {
+        layers[kPathDirect] += directLight(position, normalMaterial.xyz, material, albedo);
+    }
+    if (kEmitterPoints) {
+        layers[kPathDirect] += blEmitterPointsLight(position, normalMaterial.xyz, material, albedo, wo, 0.0);
+    }
+    if (kEnvironmentShots) {
+        layers[kPathDirect] += blEnvironmentShadowLight(position, normalMaterial.xyz, material, albedo, wo, 0.0);
+    }
     blAccumulate(pixel, layers);
 }

@@ -7,10 +7,10 @@
 // receiver plane's extension over the filter's footprint leaves the box.
 //
 // Asserted:
-//   - from outside, no inner point sees any light with the crease rule (one tap or 4 x 4) but
+//   - from outside, no inner point sees any light with the crease rule (4 x 4 or 2 x 2 taps) but
 //     beside a crease whose other face the light sees from neither side (no tap can show it; the
 //     rule's stated residual, counted and reported), and without the rule (the mutation) many do:
-//     the points reach the case the rule exists for;
+//     the points reach the case the rule exists for (one tap: no rule, the leak reported);
 //   - the rule changes nothing where the filter's answer is right or errs toward shadow: the outer
 //     sides from outside (convex edges) and the inner sides from inside (a lit room's creases),
 //     and a convex box inside the lit room casting shadows on the room (penumbrae of an occluder
@@ -60,8 +60,8 @@ static_assert(sizeof(ShadowQueryPush) == 48, "push block of shadow_cube_visibili
 // Lights off the texel lattice: from a light at short decimals a unit box's crease can run exactly
 // through a row of texel centres (from (2.2, -1.3, 0.4) at 64 texels it does), where the two faces
 // tie in depth and the one kept may be x's own (the rule's known residual, counted apart by
-// hand: 63 points with one tap, 54 with 4 x 4 at these settings, all where a lit tap's texel
-// centre ray meets the crease line).
+// hand: 54 points with 4 x 4 taps at these settings, all where a lit tap's texel centre ray meets
+// the crease line).
 const glm::vec3 kOutside[] = {{0.5137f, 2.0213f, 0.4871f}, {1.7093f, 1.9127f, -0.6041f}, {-0.8113f, 0.3079f, 1.6158f},
                               {2.2131f, -1.3049f, 0.4127f}};
 const glm::vec3 kInside[] = {{0.5093f, 0.4917f, 0.5061f}, {0.2077f, 0.8133f, 0.3019f}};
@@ -160,7 +160,7 @@ bool nearAnUnseenCrease(const glm::vec3& x, const glm::vec3& outward, const glm:
 
 TEST_F(ShadowCubeCrease, ClosedBoxStaysDarkFromALightOutside) {
     prepare(false, false);
-    for (std::uint32_t taps : {4u, 1u}) {
+    for (std::uint32_t taps : {4u, 2u, 1u}) {
         std::size_t asked = 0, leaked[2] = {0, 0}, unseen = 0;
         float worst = 0.0f;
         for (const glm::vec3& light : kOutside) {
@@ -179,6 +179,13 @@ TEST_F(ShadowCubeCrease, ClosedBoxStaysDarkFromALightOutside) {
         std::printf("%u tap(s) a side: %zu inner points facing a light outside; %zu see light with the crease rule "
                     "(%zu beside a crease no tap can show, at most %.4f), %zu without it\n",
                     taps, asked, leaked[0], unseen, worst, leaked[1]);
+        if (taps == 1) {
+            // A one-tap filter has no footprint and keeps its leak (ShadowCubeLookup.glsl, "The
+            // crease rule": the cost of judging it on a SIMD CPU driver): reported, and the rule
+            // must leave it as it is.
+            EXPECT_EQ(leaked[0], leaked[1]) << "one tap: the rule runs on multi-tap filters only";
+            continue;
+        }
         EXPECT_EQ(leaked[0] - unseen, 0u) << taps << " tap(s): inner points that see a light outside the closed box";
         EXPECT_GT(leaked[1], asked / 100) << taps << " tap(s): without the rule the points must reach the leak";
     }
@@ -197,7 +204,7 @@ TEST_F(ShadowCubeCrease, RuleLeavesLitSidesAndPenumbraeAsTheFilterHasThem) {
     };
     for (const Case& c : cases) {
         prepare(c.outward, c.innerBox);
-        for (std::uint32_t taps : {4u, 1u}) {
+        for (std::uint32_t taps : {4u, 2u}) { // the filters the rule runs on
             std::size_t asked = 0, changed = 0, partial = 0;
             for (const glm::vec3& light : c.lights) {
                 const auto answers = lookup(light, taps);
