@@ -271,8 +271,12 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
                                           g->lights.environmentShadows->buffer()),
                  vk::Bound::storageImage(shader::kMultibounceBindingEnvironmentShadowMaps,
                                          g->lights.environmentShadows->maps().view())});
+    std::vector<std::uint32_t> specialization(shader::kMultibounceSpecCount);
+    specialization[shader::kMultibounceSpecPointLights] = scene.lights.empty() ? 0u : 1u;
+    specialization[shader::kMultibounceSpecEmitterPoints] = mPlan.runs(kPassEmitterPoints) ? 1u : 0u;
+    specialization[shader::kMultibounceSpecEnvironment] = mPlan.runs(kPassEnvironmentShadows) ? 1u : 0u;
     g->paths = vk::ComputePass<shader::MultibouncePush>(device, kSpv_modes_multibounce_paths_comp,
-                                                        {g->camera->setLayout(), g->bound.layout()});
+                                                        {g->camera->setLayout(), g->bound.layout()}, specialization);
     mGpu = std::move(g);
 }
 

@@ -132,14 +132,15 @@ void blShadowTapTexel(vec2 tap, uint face, vec3 r, vec3 u, vec3 f, uint resoluti
 // from x fails (c): open scenes keep the filter's answer. Only footprints with taps both lit and in
 // shadow (penumbrae) run it. A filter of one tap (emitter points, vpl_shadow_taps = 1) has none:
 // its crease leak stays (rooms lit from outside by area lights; the test counts it). Judging its
-// tap with the surfaces of x's 2x2 footprint closes it, but costs every such lookup four probes on
-// a SIMD CPU driver: raster's shade pass x1.6 on the area-lit Cornell box.
+// tap with the surfaces of x's 2x2 footprint closes it, but cost every such lookup four probes on
+// a SIMD CPU driver: raster's shade pass x1.6 on the area-lit Cornell box. Their cubes store no
+// normal (ShadowCubePass::forPositions).
 // It runs only where a lit tap sees something other than x's plane (kShadowPastPlane: a leak's taps
 // pass outside the room; a lit tap that sees x's own planar surface, as nearly all do, needs no
 // rule), which keeps its cost to the few such footprints on a GPU. A SIMD CPU driver (lavapipe)
 // runs the body under a lane mask whether or not a lane needs it: there every lookup pays it
-// (measured on the Cornell box: raster's shade pass x1.34 with a point light, x1.6 with emitter
-// points; bidir's evaluate x1.26).
+// (measured on the Cornell box with a point light, with the cubes' normals: raster's shade pass
+// x1.18, bidir's evaluate x1.22, multibounce's paths x1.11).
 // What stays open (tests/core/gpu/ShadowCubeCreaseTest.cpp counts it): a crease whose other face no
 // tap can show (the light sees neither of its sides: a third face hides it), x on the crease
 // itself (kShadowOnPlane), and a footprint whose lit taps all see x's plane within kShadowPastPlane:

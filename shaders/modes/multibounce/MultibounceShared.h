@@ -202,5 +202,13 @@ BL_INLINE void blMultibounceRemember(BL_INOUT(MultibounceBundleWindow) w, uint k
 // Every layer of the reference: emitted, direct, indirect1, indirect2, rest.
 BL_CONST uint kMultibounceAccumLayers = kAllPathLayers;
 
+// Specialization constants of the paths pass: which kinds of light the scene's plan runs (1) or
+// leaves out (0), compiled out where left out (a SIMD CPU driver runs a loop's body at least once
+// under a lane mask even with no light to loop over; RasterShared.h has the same three).
+BL_CONST uint kMultibounceSpecPointLights = 0u;   // point and spot lights (their shadow cubes)
+BL_CONST uint kMultibounceSpecEmitterPoints = 1u; // emitter points (area emitters)
+BL_CONST uint kMultibounceSpecEnvironment = 2u;   // environment directions
+BL_CONST uint kMultibounceSpecCount = 3u;
+
 BL_NAMESPACE_END
 #endif

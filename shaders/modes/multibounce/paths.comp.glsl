@@ -59,6 +59,9 @@ layout(set = kMultibounceSet, binding = kMultibounceBindingPoints) readonly buff
 };
 layout(set = kMultibounceSet, binding = kMultibounceBindingSplats) readonly buffer SplatBlock { BundleSplat splats[]; };
 layout(push_constant) uniform PushBlock { MultibouncePush push; };
+layout(constant_id = kMultibounceSpecPointLights) const bool kPointLights = true;
+layout(constant_id = kMultibounceSpecEmitterPoints) const bool kEmitterPoints = true;
+layout(constant_id = kMultibounceSpecEnvironment) const bool kEnvironmentShots = true;
 
 // The environment's radiance toward d, as escaping paths and the MIS weights of its directions read it.
 vec3 environmentRadiance(vec3 d) {
@@ -115,10 +118,17 @@ void tracePath(vec3 x0, uint own0, vec3 n0, GpuMaterial m0, vec3 albedo0, vec3 e
     float bundlePdf = (push.flags & kMultibounceEmitterPointsOnly) != 0u ? 0.0 : push.hemispherePdf;
     for (uint segments = 1u; segments < push.maxSegments; ++segments) {
         bool bundleLeft = blMultibounceBundleLeft(window, push.pool.slots);
-        layers[layerOf(segments + 1u)] +=
-            throughput * (directLight(x, n, m, albedo, wo) +
-                          blEmitterPointsLight(x, n, m, albedo, wo, bundleLeft ? bundlePdf : 0.0) +
-                          blEnvironmentShadowLight(x, n, m, albedo, wo, bundleLeft ? bundlePdf : 0.0));
+        vec3 lit = vec3(0.0);
+        if (kPointLights) {
+            lit += directLight(x, n, m, albedo, wo);
+        }
+        if (kEmitterPoints) {
+            lit += blEmitterPointsLight(x, n, m, albedo, wo, bundleLeft ? bundlePdf : 0.0);
+        }
+        if (kEnvironmentShots) {
+            lit += blEnvironmentShadowLight(x, n, m, albedo, wo, bundleLeft ? bundlePdf : 0.0);
+        }
+        layers[layerOf(segments + 1u)] += throughput * lit;
 
         if (!bundleLeft) {
             break; // every one of K <= 8 bundles drawn: no direction independent of the path's is left
