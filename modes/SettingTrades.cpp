@@ -27,8 +27,9 @@ namespace {
 constexpr std::uint32_t kViewGrid = 48;
 // Uniform directions per view point in the bundle check (9,216 queries at kViewGrid).
 constexpr std::uint32_t kBundleDirectionsPerPoint = 4;
-// The largest settings a fix may suggest. A shadow cube of 4096^2 texels holds 6 x 64 MiB of
-// distances (plus as much depth while rendering): beyond it the cube costs more than the scene.
+// The largest settings a fix may suggest. A shadow cube of 4096^2 texels holds 6 x 128 MiB of
+// distances and normals (plus 64 MiB of depth while rendering): beyond it the cube costs more than
+// the scene.
 // A bundle of 2048^2 pixels needs 16 MiB of list heads alone per bundle and K times that in
 // multibounce: the pool caps of the modes refuse more long before.
 constexpr std::uint32_t kMaxShadowResolution = 4096;

@@ -59,7 +59,8 @@ ShadowCubePass::ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, st
     desc.colorFormats = {kTexelFormat};
     desc.depthFormat = kDepthFormat;
     desc.layout = mPipelineLayout.get();
-    desc.specialization = {normals ? 1u : 0u}; // kShadowSpecNormals
+    desc.specialization.assign(shader::kShadowSpecNormals + 1, 0u);
+    desc.specialization[shader::kShadowSpecNormals] = normals ? 1u : 0u;
     mPipeline = vk::makeGraphicsPipeline(device, desc);
 
     // Every cube starts as "nothing in the way" (+inf, no normal) in GENERAL, so a cube never rendered reads

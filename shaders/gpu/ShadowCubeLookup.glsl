@@ -38,8 +38,8 @@ const float kShadowCreaseMinCosine = 1.0 / 12.0;
 const float kShadowOnPlane = 1e-5;
 // A lit tap sees something other than x's plane when its stored distance differs from the
 // receiver's by more than this (relative): x's own planar surface is reproduced to ~1e-6, and to
-// some 1e-5 where a cube sees it at grazing angles (an emitter point's own ceiling), which should
-// not run the rule.
+// some 1e-5 where a cube sees it at grazing angles (a VPL's cube looking along the ceiling it sits
+// on), which should not run the rule.
 const float kShadowPastPlane = 1e-4;
 // The distinct candidate planes the rule keeps (a crease has one; a corner two or three).
 const int kShadowCreasePlanes = 4;
@@ -133,8 +133,8 @@ void blShadowTapTexel(vec2 tap, uint face, vec3 r, vec3 u, vec3 f, uint resoluti
 // shadow (penumbrae) run it. A filter of one tap (emitter points, vpl_shadow_taps = 1) has none:
 // its crease leak stays (rooms lit from outside by area lights; the test counts it). Judging its
 // tap with the surfaces of x's 2x2 footprint closes it, but cost every such lookup four probes on
-// a SIMD CPU driver: raster's shade pass x1.6 on the area-lit Cornell box. Their cubes store no
-// normal (ShadowCubePass::forPositions).
+// a SIMD CPU driver: raster's shade pass x1.6 on the area-lit Cornell box. Emitter points' cubes
+// therefore store no normal (ShadowCubePass::forPositions); VPL cubes store it whatever their taps.
 // It runs only where a lit tap sees something other than x's plane (kShadowPastPlane: a leak's taps
 // pass outside the room; a lit tap that sees x's own planar surface, as nearly all do, needs no
 // rule), which keeps its cost to the few such footprints on a GPU. A SIMD CPU driver (lavapipe)
@@ -177,8 +177,6 @@ bool blShadowCreaseNearBoth(vec3 p, vec3 n, vec3 q, vec3 m, vec3 ray, float res)
            blShadowAcrossRay(pToLine, line, p / length(p)) <= limit * length(p);
 }
 
-// The overrule for the lit taps of a mixed filter of taps x taps (2 to 4) of map `map` around st
-// on face `face` (basis r, u, f): how many of its lit taps the crease rule puts in shadow. p: the receiver relative to the cube's centre; n: its normal toward the light.
 // Tap t of the filter's taps x taps around st: its centre ray and packed texel; false where its ray
 // runs parallel to or behind x's plane (lit without a receiver point).
 bool blShadowCreaseProbe(uint map, uint firstLayer, uint resolution, uint face, vec3 r, vec3 u, vec3 f, vec2 st,
@@ -194,6 +192,9 @@ bool blShadowCreaseProbe(uint map, uint firstLayer, uint resolution, uint face, 
     return dot(ray, n) < -kShadowParallelCosine;
 }
 
+// The overrule for the lit taps of a mixed filter of taps x taps (2 to 4) of map `map` around st
+// on face `face` (basis r, u, f): how many of its lit taps the crease rule puts in shadow. p: the
+// receiver relative to the cube's centre; n: its normal toward the light.
 int blShadowCreaseOverrules(uint map, uint firstLayer, uint resolution, uint face, vec3 r, vec3 u, vec3 f, vec2 st,
                             vec3 p, vec3 n, const int taps) {
     const int count = taps * taps;
@@ -302,7 +303,8 @@ float blShadowFilter(uint map, uint firstLayer, uint resolution, vec3 p, vec3 n,
         lit += blShadowTap(map, firstLayer + tapFace, texel, tr, tu, tf, res, p, n, pastPlane);
     }
     if (creaseRule && taps > 1 && pastPlane && lit > 0.0 && lit < float(taps * taps)) {
-        lit -= float(blShadowCreaseOverrules(map, firstLayer, resolution, face, r, u, f, st, p, n, taps));
+        // Clamped: the rule overrules lit taps only, but a float sum must not go below zero.
+        lit = max(lit - float(blShadowCreaseOverrules(map, firstLayer, resolution, face, r, u, f, st, p, n, taps)), 0.0);
     }
     return lit / float(taps * taps);
 }

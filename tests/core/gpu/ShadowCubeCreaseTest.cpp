@@ -60,7 +60,7 @@ static_assert(sizeof(ShadowQueryPush) == 48, "push block of shadow_cube_visibili
 // Lights off the texel lattice: from a light at short decimals a unit box's crease can run exactly
 // through a row of texel centres (from (2.2, -1.3, 0.4) at 64 texels it does), where the two faces
 // tie in depth and the one kept may be x's own (the rule's known residual, counted apart by
-// hand: 54 points with 4 x 4 taps at these settings, all where a lit tap's texel centre ray meets
+// hand: 56 points with 4 x 4 taps at these settings, all where a lit tap's texel centre ray meets
 // the crease line).
 const glm::vec3 kOutside[] = {{0.5137f, 2.0213f, 0.4871f}, {1.7093f, 1.9127f, -0.6041f}, {-0.8113f, 0.3079f, 1.6158f},
                               {2.2131f, -1.3049f, 0.4127f}};
@@ -187,6 +187,10 @@ TEST_F(ShadowCubeCrease, ClosedBoxStaysDarkFromALightOutside) {
             continue;
         }
         EXPECT_EQ(leaked[0] - unseen, 0u) << taps << " tap(s): inner points that see a light outside the closed box";
+        // The exemption covers the rule's stated residual only: a classifier that excused every
+        // leak would pass the line above (56 of 13,912 with 4 x 4 taps at these settings, 0 of 4,961
+        // with 2 x 2).
+        EXPECT_LE(unseen, leaked[1] / 100) << taps << " tap(s): the unseen-crease exemption covers too much";
         EXPECT_GT(leaked[1], asked / 100) << taps << " tap(s): without the rule the points must reach the leak";
     }
 }

@@ -7,6 +7,9 @@
 
 #include <shared/CubeFaces.h>
 
+#include <cstring>
+#include <vector>
+
 using namespace bl;
 
 namespace {
@@ -32,7 +35,8 @@ float distanceToFloor(float height, std::uint32_t i, std::uint32_t j) {
 float worstFloorError(const vk::Context& ctx, const gpu::ShadowCubePass& pass, std::uint32_t cube, float height) {
     std::vector<std::byte> raw = pass.maps().download(ctx, VK_IMAGE_LAYOUT_GENERAL, 6 * cube + kDownFace);
     // shaders/gpu/ShadowTexel.glsl: per texel the distance's float bits, then the packed normal.
-    const auto* stored = reinterpret_cast<const float*>(raw.data());
+    std::vector<float> stored(raw.size() / sizeof(float));
+    std::memcpy(stored.data(), raw.data(), stored.size() * sizeof(float));
     constexpr std::uint32_t kStride = gpu::ShadowCubePass::kBytesPerTexel / sizeof(float);
     float worst = 0.0f;
     for (std::uint32_t j = 0; j < kResolution; ++j) {
