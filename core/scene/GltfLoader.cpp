@@ -78,6 +78,15 @@ public:
         if (!mModel.animations.empty()) note(std::to_string(mModel.animations.size()) + " animation(s) ignored: the scene at rest");
         if (!mModel.skins.empty()) note(std::to_string(mModel.skins.size()) + " skin(s) ignored: meshes in their bind pose");
         mScene.path = mPath;
+        // External buffers and images (Scene::inputFiles); data URIs and a .glb's own chunk are
+        // part of the file.
+        const std::filesystem::path folder = std::filesystem::path(mPath).parent_path();
+        for (const tinygltf::Buffer& b : mModel.buffers) {
+            if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0) mScene.inputFiles.push_back((folder / b.uri).string());
+        }
+        for (const tinygltf::Image& i : mModel.images) {
+            if (!i.uri.empty() && i.uri.rfind("data:", 0) != 0) mScene.inputFiles.push_back((folder / i.uri).string());
+        }
         const int sceneIndex = mModel.defaultScene >= 0 ? mModel.defaultScene : 0;
         if (mModel.scenes.empty()) {
             // A file of nodes and no scene: every root node.

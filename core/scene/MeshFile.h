@@ -15,6 +15,7 @@ struct MeshFile {
     std::vector<Material> materials;
     std::vector<Texture> textures;
     std::vector<glm::vec3> materialEmission; // MTL Ke per material
+    std::vector<std::string> materialFiles;  // the MTL files read (Scene::inputFiles)
 };
 
 // `readMaterials` false: mtllib and usemtl are skipped (Mitsuba's OBJ shapes take their bsdf from

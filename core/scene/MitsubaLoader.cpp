@@ -44,6 +44,7 @@ public:
             throw Error(path + ": no <sensor type=\"perspective\">: bundlelab needs the camera from the file");
         }
         mScene.importNotes = mXml.notes();
+        mScene.inputFiles = mXml.files();
         return std::move(mScene);
     }
 

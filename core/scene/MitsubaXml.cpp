@@ -33,6 +33,12 @@ glm::dvec3 perpendicular(const glm::dvec3& n) {
 
 XmlReader::XmlReader(const std::string& path) : mRoot(fs::path(path).parent_path()) { collect(path, 0, nullptr); }
 
+std::vector<std::string> XmlReader::files() const {
+    std::vector<std::string> out;
+    for (const Document& d : mDocs) out.push_back(d.path);
+    return out;
+}
+
 void XmlReader::collect(const std::string& path, int depth, const Element* from) {
     if (depth > kMaxIncludeDepth) {
         fail(*from, "includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " (a cycle?)");

@@ -72,6 +72,8 @@ public:
     // How the file was read, one line per decision (Scene::importNotes).
     void note(const std::string& text);
     const std::vector<std::string>& notes() const { return mNotes; }
+    // The main file and every file it includes, in the order read.
+    std::vector<std::string> files() const;
 
 private:
     void collect(const std::string& path, int depth, const Element* from);

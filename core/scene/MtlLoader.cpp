@@ -62,14 +62,14 @@ std::string resolveAssetPath(const std::string& dir, const std::string& name) {
     return fs::is_regular_file(current) ? current.string() : "";
 }
 
-void MtlLibrary::load(const std::string& mtlPath, const std::string& objPath, int objLine) {
+std::string MtlLibrary::load(const std::string& mtlPath, const std::string& objPath, int objLine) {
     if (!fs::is_regular_file(mtlPath)) {
         std::string resolved = resolveAssetPath(fs::path(mtlPath).parent_path().string(),
                                                 fs::path(mtlPath).filename().string());
         if (resolved.empty()) {
             log::warn(objPath + ":" + std::to_string(objLine) + ": material library '" + mtlPath +
                       "' not found; its materials fall back to grey");
-            return;
+            return "";
         }
         return load(resolved, objPath, objLine);
     }
@@ -124,6 +124,7 @@ void MtlLibrary::load(const std::string& mtlPath, const std::string& objPath, in
             }
         }
     }
+    return mtlPath;
 }
 
 std::uint32_t MtlLibrary::indexOf(const std::string& name, MeshFile& out, const std::string& objPath,

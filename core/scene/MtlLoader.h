@@ -13,8 +13,8 @@ namespace bl {
 class MtlLibrary {
 public:
     // Parses an MTL file named by `mtllib` at objPath:objLine. A missing MTL is a warning: its
-    // materials then fall back to the default grey.
-    void load(const std::string& mtlPath, const std::string& objPath, int objLine);
+    // materials then fall back to the default grey. Returns the file read ("" where none was).
+    std::string load(const std::string& mtlPath, const std::string& objPath, int objLine);
 
     // Index of `name` in out.materials, adding it (and its texture) on first use. An unknown name
     // is a warning and gets a default material of that name.

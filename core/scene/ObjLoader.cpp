@@ -137,8 +137,9 @@ MeshFile loadObj(const std::string& path, bool readMaterials) {
             currentMaterial = t.size() > 1 ? std::string(t[1]) : "";
         } else if (key == "mtllib") {
             for (std::size_t k = 1; k < t.size(); ++k) {
-                library.load((fs::path(path).parent_path() / std::string(t[k])).string(), path,
-                             in.lineNumber());
+                const std::string read = library.load((fs::path(path).parent_path() / std::string(t[k])).string(),
+                                                      path, in.lineNumber());
+                if (!read.empty()) out.materialFiles.push_back(read);
             }
         }
         // o, g, s, l, p and vendor extensions carry nothing we render.

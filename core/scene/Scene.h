@@ -38,6 +38,10 @@ struct Scene {
     // How a scene in another format was mapped to this model (MitsubaLoader.h), one line per
     // decision: what was ignored, approximated or tessellated. Empty for the native formats.
     std::vector<std::string> importNotes;
+    // Every file read to build it: the scene file, Mitsuba includes, glTF buffers and images, meshes,
+    // textures, the environment map (sorted, no duplicates; filled by loadScene). What a cache of
+    // its renders must hash: a change to any of them is a different scene.
+    std::vector<std::string> inputFiles;
 
     std::size_t triangleCount() const;
     // Bounds of all geometry over its whole motion (rotations' arcs between keys included).

@@ -20,6 +20,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <map>
+#include <set>
 #include <variant>
 
 namespace fs = std::filesystem;
@@ -264,6 +265,7 @@ void addMeshFile(Scene& scene, MeshFile file, const std::string& context,
             scene.textures.push_back(std::move(t));
         }
     }
+    scene.inputFiles.insert(scene.inputFiles.end(), file.materialFiles.begin(), file.materialFiles.end());
     for (Mesh& mesh : file.meshes) {
         bakeTransform(mesh, transform);
         CleanupStats stats = cleanupMesh(mesh, normals);
@@ -537,6 +539,22 @@ Scene loadBareMesh(const std::string& path) {
     return scene;
 }
 
+// Scene::inputFiles: what the loader listed (includes, buffers) and every named file the scene's
+// parts came from. Meshes a loader made itself (tessellated shapes) and embedded images name no
+// file of their own: only names of existing files count.
+void listInputFiles(Scene& scene, const std::string& path) {
+    std::set<std::string> files{path};
+    const auto add = [&](const std::string& f) {
+        std::error_code ec;
+        if (!f.empty() && fs::is_regular_file(f, ec)) files.insert(f);
+    };
+    for (const std::string& f : scene.inputFiles) add(f);
+    for (const Mesh& m : scene.meshes) add(m.sourceFile);
+    for (const Texture& t : scene.textures) add(t.path);
+    add(scene.environment.file);
+    scene.inputFiles.assign(files.begin(), files.end());
+}
+
 } // namespace
 
 Scene loadScene(const std::string& path) {
@@ -550,6 +568,7 @@ Scene loadScene(const std::string& path) {
                   : ext == ".gltf" || ext == ".glb" ? loadGltfScene(path)
                                                      : loadBareMesh(path);
     if (ext == ".gltf" || ext == ".glb") lightIfUnlit(scene, path);
+    listInputFiles(scene, path);
     requireRepresentable(scene);
     if (recentreFarScene(scene)) {
         log::info(path + ": far from the origin; renderers work relative to its centre " + formatNumber(scene.origin.x) +

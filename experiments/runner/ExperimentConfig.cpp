@@ -180,12 +180,8 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
         t.finish();
         try {
             Scene loaded = loadScene(s.file); // every scene error before any task starts
-            std::set<std::string> files{s.file};
-            for (const Mesh& m : loaded.meshes) files.insert(m.sourceFile);
-            for (const Texture& tex : loaded.textures) files.insert(tex.path);
-            if (!loaded.environment.file.empty()) files.insert(loaded.environment.file);
             std::string identity = s.resolution ? std::to_string(s.resolution->x) + "x" + std::to_string(s.resolution->y) : "";
-            for (const std::string& f : files) identity += "|" + f + "|" + hashText(readWholeFile(f));
+            for (const std::string& f : loaded.inputFiles) identity += "|" + f + "|" + hashText(readWholeFile(f));
             s.fingerprint = hashText(identity);
         } catch (const Error& e) {
             throwAt(path, t.line("file"), std::string("scene '") + s.name + "': " + e.what());

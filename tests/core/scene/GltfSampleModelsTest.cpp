@@ -53,6 +53,20 @@ TEST(GltfSampleModels, BoxTexturedReadsTheSameInEveryContainer) {
     EXPECT_TRUE(gltf.environment.present);
 }
 
+// Scene::inputFiles: a .gltf with its .bin and image lists all three; the embedded and binary
+// containers are one file each.
+TEST(GltfSampleModels, InputFilesNameTheBuffersAndImages) {
+    BL_SKIP_WITHOUT_MODELS();
+    const Scene gltf = loadScene(kModels + "BoxTextured-glTF/BoxTextured.gltf");
+    std::vector<std::string> names;
+    for (const std::string& f : gltf.inputFiles) names.push_back(std::filesystem::path(f).filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"BoxTextured.gltf", "BoxTextured0.bin", "CesiumLogoFlat.png"}));
+    for (const char* one : {"BoxTextured-glTF-Binary/BoxTextured.glb", "BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
+        EXPECT_EQ(loadScene(kModels + one).inputFiles, std::vector<std::string>{kModels + one}) << one;
+    }
+}
+
 // A node hierarchy of 115 meshes with instancing (COLLADA2GLTF): every instance placed, the file's
 // own zero-area triangles dropped (10419 in its meshes, counted independently in their index
 // data; 11160 once instanced), nothing else.

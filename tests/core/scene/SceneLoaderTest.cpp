@@ -1,6 +1,7 @@
 #include "scene/SceneLoader.h"
 #include "support/TestFiles.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <map>
@@ -62,6 +63,37 @@ TEST(SceneLoader, LoadsTheTypedCornellBox) {
 
 // Every scene of data/ loads; those that read ../shared only where it is there (the others are
 // listed, and the test is marked skipped when any was left out).
+// Scene::inputFiles (what the runner hashes to tell a changed scene): the scene file, every mesh
+// file and the MTL an OBJ names; a mesh the scene file itself defines adds none.
+TEST(SceneLoader, InputFilesAreEveryFileRead) {
+    const std::string path = sceneWith("[[mesh]]\nfile = \"two.obj\"\n");
+    const Scene s = loadScene(path);
+    const std::string dir = std::filesystem::path(path).parent_path().string();
+    const auto in = [&](const std::string& name) {
+        return std::count(s.inputFiles.begin(), s.inputFiles.end(), (std::filesystem::path(dir) / name).string());
+    };
+    EXPECT_EQ(s.inputFiles.size(), 4u);
+    EXPECT_EQ(in("scene.toml"), 1);
+    EXPECT_EQ(in("quad.obj"), 1);
+    EXPECT_EQ(in("two.obj"), 1);
+    EXPECT_EQ(in("two.mtl"), 1);
+}
+
+// Mitsuba: the main file, its includes and the meshes they name (the cbox's rectangles and cube
+// are tessellated by the importer and name no file).
+TEST(SceneLoader, MitsubaInputFilesIncludeTheIncludes) {
+    BL_SKIP_WITHOUT_SHARED("data/cornell-box/mitsuba-cbox/cbox-rgb.xml");
+    const Scene s = loadScene(bl::test::sharedPath("data/cornell-box/mitsuba-cbox/cbox-rgb.xml"));
+    std::vector<std::string> names;
+    for (const std::string& f : s.inputFiles) {
+        EXPECT_TRUE(std::filesystem::is_regular_file(f)) << f;
+        names.push_back(std::filesystem::path(f).filename().string());
+    }
+    for (const char* name : {"cbox-rgb.xml", "base.xml", "bsdfs-rgb.xml", "shapes.xml"}) {
+        EXPECT_EQ(std::count(names.begin(), names.end(), name), 1) << name;
+    }
+}
+
 TEST(SceneLoader, EverySceneInDataLoads) {
     std::vector<std::string> leftOut;
     for (const auto& entry : std::filesystem::recursive_directory_iterator(sourcePath("data"))) {
