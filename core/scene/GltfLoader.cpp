@@ -10,6 +10,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -80,12 +81,11 @@ public:
         mScene.path = mPath;
         // External buffers and images (Scene::inputFiles); data URIs and a .glb's own chunk are
         // part of the file.
-        const std::filesystem::path folder = std::filesystem::path(mPath).parent_path();
         for (const tinygltf::Buffer& b : mModel.buffers) {
-            if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0) mScene.inputFiles.push_back((folder / b.uri).string());
+            if (const std::string f = fileOf(b.uri); !f.empty()) mScene.inputFiles.push_back(f);
         }
         for (const tinygltf::Image& i : mModel.images) {
-            if (!i.uri.empty() && i.uri.rfind("data:", 0) != 0) mScene.inputFiles.push_back((folder / i.uri).string());
+            if (const std::string f = fileOf(i.uri); !f.empty()) mScene.inputFiles.push_back(f);
         }
         const int sceneIndex = mModel.defaultScene >= 0 ? mModel.defaultScene : 0;
         if (mModel.scenes.empty()) {
@@ -134,6 +134,23 @@ private:
             for (const std::string& e : requiredExtensionsIn(mPath)) refuseUnread(e);
             fail(error.empty() ? std::string("not a readable glTF file") : error);
         }
+    }
+
+    // The file a buffer's or image's uri names, beside the glTF file (percent-decoded, as tinygltf
+    // reads it); empty for data URIs and for a .glb's own chunk (no uri).
+    std::string fileOf(const std::string& uri) const {
+        if (uri.empty() || uri.rfind("data:", 0) == 0) return "";
+        std::string decoded;
+        for (std::size_t i = 0; i < uri.size(); ++i) {
+            const auto hex = [&](std::size_t k) { return std::isxdigit(static_cast<unsigned char>(uri[k])) != 0; };
+            if (uri[i] == '%' && i + 2 < uri.size() && hex(i + 1) && hex(i + 2)) {
+                decoded += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+                i += 2;
+            } else {
+                decoded += uri[i];
+            }
+        }
+        return (std::filesystem::path(mPath).parent_path() / decoded).string();
     }
 
     void refuseUnread(const std::string& extension) const {
@@ -429,7 +446,8 @@ private:
             }
         }
         if (scale) note(what + ": base colour factor multiplied into its texture (in linear, re-encoded as sRGB 8-bit)");
-        mScene.textures.push_back({image.uri.empty() ? mPath + "#image" + std::to_string(source) : image.uri, std::move(out)});
+        const std::string file = fileOf(image.uri);
+        mScene.textures.push_back({file.empty() ? mPath + "#image" + std::to_string(source) : file, std::move(out)});
         return int(mScene.textures.size() - 1);
     }
 

@@ -15,7 +15,7 @@ struct MeshFile {
     std::vector<Material> materials;
     std::vector<Texture> textures;
     std::vector<glm::vec3> materialEmission; // MTL Ke per material
-    std::vector<std::string> materialFiles;  // the MTL files read (Scene::inputFiles)
+    std::vector<std::string> materialFiles;  // MTL and texture files read or looked for (Scene::inputFiles)
 };
 
 // `readMaterials` false: mtllib and usemtl are skipped (Mitsuba's OBJ shapes take their bsdf from

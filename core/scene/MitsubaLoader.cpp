@@ -44,7 +44,8 @@ public:
             throw Error(path + ": no <sensor type=\"perspective\">: bundlelab needs the camera from the file");
         }
         mScene.importNotes = mXml.notes();
-        mScene.inputFiles = mXml.files();
+        const std::vector<std::string> documents = mXml.files();
+        mScene.inputFiles.insert(mScene.inputFiles.end(), documents.begin(), documents.end());
         return std::move(mScene);
     }
 
@@ -319,6 +320,7 @@ private:
         if (type == "obj" || type == "ply") {
             if (!props.count("filename")) XmlReader::fail(e, "missing <string name=\"filename\">");
             const std::string file = mXml.resolve(props.at("filename"), mXml.attribute(props.at("filename"), "value"));
+            mScene.inputFiles.push_back(file);
             MeshFile mf = type == "obj" ? loadObj(file, false) : loadPly(file); // Mitsuba ignores MTL files
             meshes = std::move(mf.meshes);
             if (type == "ply") {

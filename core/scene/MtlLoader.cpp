@@ -62,17 +62,19 @@ std::string resolveAssetPath(const std::string& dir, const std::string& name) {
     return fs::is_regular_file(current) ? current.string() : "";
 }
 
-std::string MtlLibrary::load(const std::string& mtlPath, const std::string& objPath, int objLine) {
+void MtlLibrary::load(const std::string& mtlPath, const std::string& objPath, int objLine) {
     if (!fs::is_regular_file(mtlPath)) {
         std::string resolved = resolveAssetPath(fs::path(mtlPath).parent_path().string(),
                                                 fs::path(mtlPath).filename().string());
         if (resolved.empty()) {
             log::warn(objPath + ":" + std::to_string(objLine) + ": material library '" + mtlPath +
                       "' not found; its materials fall back to grey");
-            return "";
+            mFiles.push_back(mtlPath);
+            return;
         }
         return load(resolved, objPath, objLine);
     }
+    mFiles.push_back(mtlPath);
     TextLines in(mtlPath);
     const std::string dir = fs::path(mtlPath).parent_path().string();
     Definition* current = nullptr;
@@ -118,13 +120,13 @@ std::string MtlLibrary::load(const std::string& mtlPath, const std::string& objP
             // Options (-bm, -s, …) precede the file name, which is the last token.
             std::string file(t.back());
             current->texturePath = resolveAssetPath(dir, file);
+            mFiles.push_back(current->texturePath.empty() ? (fs::path(dir) / file).string() : current->texturePath);
             if (current->texturePath.empty()) {
                 log::warn(mtlPath + ":" + std::to_string(in.lineNumber()) + ": texture '" + file +
                           "' not found; material '" + current->material.name + "' uses its flat Kd");
             }
         }
     }
-    return mtlPath;
 }
 
 std::uint32_t MtlLibrary::indexOf(const std::string& name, MeshFile& out, const std::string& objPath,

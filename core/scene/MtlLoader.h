@@ -13,8 +13,12 @@ namespace bl {
 class MtlLibrary {
 public:
     // Parses an MTL file named by `mtllib` at objPath:objLine. A missing MTL is a warning: its
-    // materials then fall back to the default grey. Returns the file read ("" where none was).
-    std::string load(const std::string& mtlPath, const std::string& objPath, int objLine);
+    // materials then fall back to the default grey.
+    void load(const std::string& mtlPath, const std::string& objPath, int objLine);
+
+    // Every MTL and texture file it read or looked for and did not find (Scene::inputFiles: adding
+    // a missing one later changes the scene).
+    const std::vector<std::string>& files() const { return mFiles; }
 
     // Index of `name` in out.materials, adding it (and its texture) on first use. An unknown name
     // is a warning and gets a default material of that name.
@@ -30,6 +34,7 @@ private:
     std::map<std::string, Definition> mDefinitions;
     std::map<std::string, std::uint32_t> mUsed;
     std::map<std::string, int> mTextureOf; // path -> index in out.textures
+    std::vector<std::string> mFiles;
 };
 
 // Finds `name` (which may use backslashes or another letter case, as in Sponza's MTL) relative to

@@ -137,9 +137,8 @@ MeshFile loadObj(const std::string& path, bool readMaterials) {
             currentMaterial = t.size() > 1 ? std::string(t[1]) : "";
         } else if (key == "mtllib") {
             for (std::size_t k = 1; k < t.size(); ++k) {
-                const std::string read = library.load((fs::path(path).parent_path() / std::string(t[k])).string(),
-                                                      path, in.lineNumber());
-                if (!read.empty()) out.materialFiles.push_back(read);
+                library.load((fs::path(path).parent_path() / std::string(t[k])).string(), path,
+                             in.lineNumber());
             }
         }
         // o, g, s, l, p and vendor extensions carry nothing we render.
@@ -165,6 +164,7 @@ MeshFile loadObj(const std::string& path, bool readMaterials) {
     }
     log::debug(path + ": " + std::to_string(v.size()) + " vertices, " + std::to_string(faces) +
                " faces, " + std::to_string(out.meshes.size()) + " meshes");
+    out.materialFiles = library.files();
     return out;
 }
 

@@ -38,9 +38,10 @@ struct Scene {
     // How a scene in another format was mapped to this model (MitsubaLoader.h), one line per
     // decision: what was ignored, approximated or tessellated. Empty for the native formats.
     std::vector<std::string> importNotes;
-    // Every file read to build it: the scene file, Mitsuba includes, glTF buffers and images, meshes,
-    // textures, the environment map (sorted, no duplicates; filled by loadScene). What a cache of
-    // its renders must hash: a change to any of them is a different scene.
+    // Every file read to build it, and every file a loader looked for and did not find (a missing
+    // MTL or texture: adding it later changes the scene): the scene file, Mitsuba includes, glTF
+    // buffers and images, mesh files, MTLs and their textures, the environment map (sorted, no
+    // duplicates; filled by loadScene). What a cache of its renders must hash.
     std::vector<std::string> inputFiles;
 
     std::size_t triangleCount() const;

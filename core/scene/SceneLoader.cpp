@@ -394,6 +394,7 @@ void readMesh(StrictTable& t, Scene& scene, const std::map<std::string, std::uin
     }
     t.finish();
     MeshFile file;
+    scene.inputFiles.push_back(path); // listed even where cleanup drops every triangle
     try {
         file = loadMeshFile(path);
     } catch (const Error& e) {
@@ -539,16 +540,17 @@ Scene loadBareMesh(const std::string& path) {
     return scene;
 }
 
-// Scene::inputFiles: what the loader listed (includes, buffers) and every named file the scene's
-// parts came from. Meshes a loader made itself (tessellated shapes) and embedded images name no
-// file of their own: only names of existing files count.
+// Scene::inputFiles: what the loader listed (every file it opened or looked for: includes,
+// buffers, mesh files, MTLs and their textures, found or not) and every file the scene's parts
+// name. A mesh a loader made itself (a tessellated shape) or an embedded image names no file of
+// its own: of those names only existing files count.
 void listInputFiles(Scene& scene, const std::string& path) {
-    std::set<std::string> files{path};
+    std::set<std::string> files(scene.inputFiles.begin(), scene.inputFiles.end());
+    files.insert(path);
     const auto add = [&](const std::string& f) {
         std::error_code ec;
         if (!f.empty() && fs::is_regular_file(f, ec)) files.insert(f);
     };
-    for (const std::string& f : scene.inputFiles) add(f);
     for (const Mesh& m : scene.meshes) add(m.sourceFile);
     for (const Texture& t : scene.textures) add(t.path);
     add(scene.environment.file);

@@ -181,7 +181,10 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
         try {
             Scene loaded = loadScene(s.file); // every scene error before any task starts
             std::string identity = s.resolution ? std::to_string(s.resolution->x) + "x" + std::to_string(s.resolution->y) : "";
-            for (const std::string& f : loaded.inputFiles) identity += "|" + f + "|" + hashText(readWholeFile(f));
+            for (const std::string& f : loaded.inputFiles) {
+                // A file the loader looked for and did not find is part of the scene too (absent).
+                identity += "|" + f + "|" + (fs::is_regular_file(f) ? hashText(readWholeFile(f)) : std::string("absent"));
+            }
             s.fingerprint = hashText(identity);
         } catch (const Error& e) {
             throwAt(path, t.line("file"), std::string("scene '") + s.name + "': " + e.what());

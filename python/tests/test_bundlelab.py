@@ -133,8 +133,9 @@ def test_rendering_releases_the_gil():
         counter.join()
     during = [t for t in ticks if start < t < end]
     assert out["seconds"] >= 1.0
-    # At 5 ms a tick, a second gives ~200; a held GIL gives at most the one or two around the call.
-    assert len(during) > 20, f"{len(during)} ticks while rendering: the GIL was held"
+    # At 5 ms a tick, a second gives ~200 (fewer on a loaded machine); a held GIL gives at most the
+    # one or two around the call (measured: 1).
+    assert len(during) > 10, f"{len(during)} ticks while rendering: the GIL was held"
 
 
 def test_run_is_the_clis_experiment_and_resumes(tmp_path):

@@ -159,13 +159,19 @@ imported_scenes)
     # in the reference and a GPU mode, compare, run), each against its hand-written TOML twin: the
     # reference path tracer gives the same image from either with the same seed (float rounding of
     # the importers' transforms, bounded as in tests/modes/reference/MitsubaTwinTest.cpp: relMSE 1e-5).
-    needs_shared ../shared/data/cornell-box/mitsuba-cbox/cbox-rgb.xml
-    needs_shared ../shared/data/glossy/veach-mis/veach_mis.xml
     # The glTF camera's field of view is vertical (yfov), the TOML twin's horizontal: they agree at
-    # the twin's square aspect only, so that pair renders square.
-    pairs=("../shared/data/cornell-box/mitsuba-cbox/cbox-rgb.xml data/external/mitsuba-cbox.toml 24"
-           "../shared/data/glossy/veach-mis/veach_mis.xml data/external/veach-mis.toml 24"
-           "data/cornell-box/cornell-point.gltf data/cornell-box/cornell-point.toml 16")
+    # the twin's square aspect only, so that pair renders square. The Mitsuba files are ../shared's:
+    # without it only the glTF pair runs (and says so).
+    pairs=("data/cornell-box/cornell-point.gltf data/cornell-box/cornell-point.toml 16")
+    for xml in "cornell-box/mitsuba-cbox/cbox-rgb.xml data/external/mitsuba-cbox.toml" \
+               "glossy/veach-mis/veach_mis.xml data/external/veach-mis.toml"; do
+        read -r file twin <<<"$xml"
+        if [[ -e ../shared/data/$file ]]; then
+            pairs+=("../shared/data/$file $twin 24")
+        else
+            echo "note: ../shared/data/$file is not here; its pair is left out"
+        fi
+    done
     scenes=""
     for pair in "${pairs[@]}"; do
         read -r scene twin width <<<"$pair"
@@ -194,7 +200,7 @@ imported_scenes)
     printf '[experiment]\nname = "imported"\niterations = 2\n[reference]\nspp = 4\n%s[[mode]]\nmode = "raster"\nsettings = { shadow_resolution = 64 }\n' \
         "$scenes" >"$out/imported.toml"
     "$bl" run "$out/imported.toml" --out "$out/results" >"$out/run.txt" 2>&1 || { cat "$out/run.txt"; fail "run"; }
-    [[ $(tail -n +2 "$out/results/results.csv" | wc -l) -eq 3 ]] || fail "run: not one result row per imported scene"
+    [[ $(tail -n +2 "$out/results/results.csv" | wc -l) -eq ${#pairs[@]} ]] || fail "run: not one result row per imported scene"
     ;;
 run_lost_work)
     # The experiment runner applies the same verdict: the all-overflowing view fails its task (error.txt,

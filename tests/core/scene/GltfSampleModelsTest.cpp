@@ -53,11 +53,14 @@ TEST(GltfSampleModels, BoxTexturedReadsTheSameInEveryContainer) {
     EXPECT_TRUE(gltf.environment.present);
 }
 
-// Scene::inputFiles: a .gltf with its .bin and image lists all three; the embedded and binary
-// containers are one file each.
+// Scene::inputFiles: a .gltf with its .bin and image lists all three (percent-encoded uris
+// decoded, as tinygltf reads them); the embedded and binary containers are one file each. The
+// texture's path is its file beside the glTF, never a name relative to the working directory.
 TEST(GltfSampleModels, InputFilesNameTheBuffersAndImages) {
     BL_SKIP_WITHOUT_MODELS();
     const Scene gltf = loadScene(kModels + "BoxTextured-glTF/BoxTextured.gltf");
+    ASSERT_EQ(gltf.textures.size(), 1u);
+    EXPECT_EQ(gltf.textures[0].path, kModels + "BoxTextured-glTF/CesiumLogoFlat.png");
     std::vector<std::string> names;
     for (const std::string& f : gltf.inputFiles) names.push_back(std::filesystem::path(f).filename().string());
     std::sort(names.begin(), names.end());
@@ -65,6 +68,23 @@ TEST(GltfSampleModels, InputFilesNameTheBuffersAndImages) {
     for (const char* one : {"BoxTextured-glTF-Binary/BoxTextured.glb", "BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
         EXPECT_EQ(loadScene(kModels + one).inputFiles, std::vector<std::string>{kModels + one}) << one;
     }
+    // The same box with spaces in its file names, written %20 in the uris.
+    const std::string dir = bl::test::tempDir();
+    std::filesystem::copy_file(kModels + "BoxTextured-glTF/BoxTextured0.bin", dir + "/Box Textured0.bin",
+                               std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::copy_file(kModels + "BoxTextured-glTF/CesiumLogoFlat.png", dir + "/Cesium Logo.png",
+                               std::filesystem::copy_options::overwrite_existing);
+    std::ifstream in(kModels + "BoxTextured-glTF/BoxTextured.gltf");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const auto& [from, to] : {std::pair<std::string, std::string>{"BoxTextured0.bin", "Box%20Textured0.bin"},
+                                   {"CesiumLogoFlat.png", "Cesium%20Logo.png"}}) {
+        const std::size_t at = text.find(from);
+        ASSERT_NE(at, std::string::npos) << from;
+        text.replace(at, from.size(), to);
+    }
+    const Scene spaced = loadScene(bl::test::writeTempFile("spaced.gltf", text));
+    EXPECT_EQ(spaced.inputFiles, (std::vector<std::string>{dir + "/Box Textured0.bin", dir + "/Cesium Logo.png",
+                                                          dir + "/spaced.gltf"}));
 }
 
 // A node hierarchy of 115 meshes with instancing (COLLADA2GLTF): every instance placed, the file's

@@ -61,10 +61,8 @@ TEST(SceneLoader, LoadsTheTypedCornellBox) {
     EXPECT_EQ(light->emission, glm::vec3(17.0f, 12.0f, 4.0f));
 }
 
-// Every scene of data/ loads; those that read ../shared only where it is there (the others are
-// listed, and the test is marked skipped when any was left out).
 // Scene::inputFiles (what the runner hashes to tell a changed scene): the scene file, every mesh
-// file and the MTL an OBJ names; a mesh the scene file itself defines adds none.
+// file and the MTL an OBJ names, and an MTL named but missing (adding it changes the scene).
 TEST(SceneLoader, InputFilesAreEveryFileRead) {
     const std::string path = sceneWith("[[mesh]]\nfile = \"two.obj\"\n");
     const Scene s = loadScene(path);
@@ -77,22 +75,44 @@ TEST(SceneLoader, InputFilesAreEveryFileRead) {
     EXPECT_EQ(in("quad.obj"), 1);
     EXPECT_EQ(in("two.obj"), 1);
     EXPECT_EQ(in("two.mtl"), 1);
+
+    writeTempFile("lost.obj", std::string("mtllib lost.mtl\n") + kQuadObj);
+    const Scene lost = loadScene(writeTempFile("lost.toml", "[[mesh]]\nfile = \"lost.obj\"\n"));
+    EXPECT_EQ(std::count(lost.inputFiles.begin(), lost.inputFiles.end(), (std::filesystem::path(dir) / "lost.mtl").string()), 1)
+        << "a missing MTL is listed";
 }
 
-// Mitsuba: the main file, its includes and the meshes they name (the cbox's rectangles and cube
-// are tessellated by the importer and name no file).
+// Mitsuba: the main file, its includes and the mesh files their shapes name (the cbox: three
+// fragments, eight OBJs); shapes the importer tessellates (veach_mis's five spheres) add none.
 TEST(SceneLoader, MitsubaInputFilesIncludeTheIncludes) {
     BL_SKIP_WITHOUT_SHARED("data/cornell-box/mitsuba-cbox/cbox-rgb.xml");
-    const Scene s = loadScene(bl::test::sharedPath("data/cornell-box/mitsuba-cbox/cbox-rgb.xml"));
-    std::vector<std::string> names;
-    for (const std::string& f : s.inputFiles) {
-        EXPECT_TRUE(std::filesystem::is_regular_file(f)) << f;
-        names.push_back(std::filesystem::path(f).filename().string());
-    }
+    BL_SKIP_WITHOUT_SHARED("data/glossy/veach-mis/veach_mis.xml");
+    const auto namesOf = [](const Scene& s) {
+        std::vector<std::string> names;
+        for (const std::string& f : s.inputFiles) {
+            EXPECT_TRUE(std::filesystem::is_regular_file(f)) << f;
+            names.push_back(std::filesystem::path(f).filename().string());
+        }
+        return names;
+    };
+    const auto count = [](const std::vector<std::string>& names, const std::string& ext) {
+        return std::count_if(names.begin(), names.end(),
+                             [&](const std::string& n) { return std::filesystem::path(n).extension() == ext; });
+    };
+    const std::vector<std::string> cbox = namesOf(loadScene(bl::test::sharedPath("data/cornell-box/mitsuba-cbox/cbox-rgb.xml")));
     for (const char* name : {"cbox-rgb.xml", "base.xml", "bsdfs-rgb.xml", "shapes.xml"}) {
-        EXPECT_EQ(std::count(names.begin(), names.end(), name), 1) << name;
+        EXPECT_EQ(std::count(cbox.begin(), cbox.end(), name), 1) << name;
     }
+    EXPECT_EQ(count(cbox, ".obj"), 8);
+    EXPECT_EQ(cbox.size(), 12u);
+    const std::vector<std::string> veach = namesOf(loadScene(bl::test::sharedPath("data/glossy/veach-mis/veach_mis.xml")));
+    EXPECT_EQ(count(veach, ".xml"), 1);
+    EXPECT_EQ(count(veach, ".obj"), 5); // the plates and the floor
+    EXPECT_EQ(veach.size(), 6u);
 }
+
+// Every scene of data/ loads; those that read ../shared only where it is there (the others are
+// listed, and the test is marked skipped when any was left out).
 
 TEST(SceneLoader, EverySceneInDataLoads) {
     std::vector<std::string> leftOut;
