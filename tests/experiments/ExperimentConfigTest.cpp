@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 using namespace bl;
 using bl::test::errorOf;
 using bl::test::sourcePath;
+using bl::test::tempDir;
 using bl::test::writeTempFile;
 
 TEST(ExperimentConfig, ExpandsTheGrid) {
@@ -69,6 +72,22 @@ TEST(ExperimentConfig, EditingAMeshInvalidatesFinishedTasks) {
     EXPECT_EQ(loadExperimentConfig(config).tasks.at(0).hash, before);
     writeTempFile("tri.obj", "v 0 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\n"); // the scene file is unchanged
     EXPECT_NE(loadExperimentConfig(config).tasks.at(0).hash, before);
+}
+
+// Editing an MTL, or adding one the OBJ names but that was missing, is a different scene too
+// (Scene::inputFiles lists files looked for and not found; the runner hashes them as absent).
+TEST(ExperimentConfig, EditingOrAddingAMaterialFileInvalidatesFinishedTasks) {
+    writeTempFile("tri.obj", "mtllib tri.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n");
+    std::filesystem::remove(std::filesystem::path(tempDir()) / "tri.mtl");
+    writeTempFile("scene.toml", "[[mesh]]\nfile = \"tri.obj\"\n");
+    std::string config = writeTempFile("e.toml", "[experiment]\nname = \"x\"\n[[scene]]\nfile = \"scene.toml\"\n"
+                                                 "[[mode]]\nmode = \"raster\"\n");
+    const std::string missing = loadExperimentConfig(config).tasks.at(0).hash;
+    writeTempFile("tri.mtl", "newmtl m\nKd 0.5 0.5 0.5\n");
+    const std::string added = loadExperimentConfig(config).tasks.at(0).hash;
+    EXPECT_NE(added, missing);
+    writeTempFile("tri.mtl", "newmtl m\nKd 0.25 0.5 0.5\n");
+    EXPECT_NE(loadExperimentConfig(config).tasks.at(0).hash, added);
 }
 
 // Names become paths under the output directory (results/<experiment>, references/<scene>-…):
