@@ -212,7 +212,13 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
                               vk::MemoryUse::Upload);
 
     VkDevice device = ctx->device();
-    g->exchange.exchangePass = vk::ComputePass<shader::AtlasExchangePush>(device, kSpv_modes_atlas_exchange_comp);
+    g->glossy.transfer = mPlan.runs(kPassGlossyTransfer);
+    std::array<std::uint32_t, shader::kAtlasSpecCount> exchangeSpec{};
+    exchangeSpec[shader::kAtlasSpecSplit] = g->exchange.split ? 1u : 0u;
+    exchangeSpec[shader::kAtlasSpecGlossy] = g->glossy.transfer ? 1u : 0u;
+    exchangeSpec[shader::kAtlasSpecBounce] = mOptions.bounce ? 1u : 0u;
+    g->exchange.exchangePass =
+        vk::ComputePass<shader::AtlasExchangePush>(device, kSpv_modes_atlas_exchange_comp, {}, exchangeSpec);
     g->exchange.updatePass = vk::ComputePass<shader::AtlasUpdatePush>(device, kSpv_modes_atlas_update_comp);
     if (!scene.lights.empty()) {
         g->direct.shadows = std::make_unique<gpu::ShadowCubePass>(*ctx, *g->scene, mOptions.shadowResolution);
@@ -227,7 +233,6 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
     if (materials.empty()) materials.emplace_back();
     g->glossy.materials = vk::makeBuffer(*ctx, std::span<const shader::GpuMaterial>(materials), kStorage);
     g->glossy.gather = mPlan.runs(kPassGlossyGather);
-    g->glossy.transfer = mPlan.runs(kPassGlossyTransfer);
     // The shuffled direction order only where a mesh carries a glossy lobe: with none hit, the
     // transfer adds nothing and the directions stay those of the diffuse mode.
     const auto glossyMesh = [&](const Mesh& m) {

@@ -31,6 +31,18 @@
 
 layout(local_size_x = kAtlasGroupSize) in;
 layout(push_constant) uniform PushBlock { AtlasExchangePush push; };
+layout(constant_id = kAtlasSpecSplit) const bool kSplit = true;
+layout(constant_id = kAtlasSpecGlossy) const bool kGlossy = true;
+layout(constant_id = kAtlasSpecBounce) const bool kBounce = false;
+
+// The direction's words with what the pipeline's constants fix put in as constants (AtlasShared.h,
+// kAtlasSpecSplit): the paths they rule out fold away wherever `dir` is read.
+AtlasDirection specialized(AtlasDirection dir) {
+    dir.split = kSplit ? dir.split : 0u;
+    dir.glossy = kGlossy ? dir.glossy : 0u;
+    dir.transfer = kBounce ? kAtlasTransferBounce : kAtlasTransferInterleaved;
+    return dir;
+}
 
 // Texel of a bundle node.
 uint texelOf(BundleHitPayload hits, uint node) {
@@ -113,7 +125,7 @@ void main() {
     if (blBundlePoolOverflowed(BundleCounterBlock(push.pool.counters))) {
         return;
     }
-    AtlasDirection dir = AtlasDirectionBlock(push.direction).direction;
+    AtlasDirection dir = specialized(AtlasDirectionBlock(push.direction).direction);
     BundleNodes nodes = BundleNodes(push.pool.nodes);
     BundleHitPayload hits = BundleHitPayload(push.pool.payload);
     uint head = blBundlePoolHeads(push.pool, 0u).heads[pixel] & kBundleIndexMask;
