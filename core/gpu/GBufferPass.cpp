@@ -14,7 +14,8 @@ constexpr VkFormat kAttachmentFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 } // namespace
 
-GBufferPass::GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t width, std::uint32_t height)
+GBufferPass::GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t width, std::uint32_t height,
+                         bool surface)
     : mScene(&scene), mWidth(width), mHeight(height) {
     VkDevice device = ctx.device();
     for (vk::GpuImage& a : mAttachments) {
@@ -56,6 +57,9 @@ GBufferPass::GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uin
     desc.colorFormats.assign(shader::kGBufferAttachmentCount, kAttachmentFormat);
     desc.depthFormat = kDepthFormat;
     desc.layout = mPipelineLayout.get();
+    desc.specialization.assign(shader::kGBufferSpecCount, 0u);
+    desc.specialization[shader::kGBufferSpecTextured] = scene.scene().features().textured ? 1u : 0u;
+    desc.specialization[shader::kGBufferSpecSurface] = surface ? 1u : 0u;
     mPipeline = vk::makeGraphicsPipeline(device, desc);
 }
 

@@ -17,6 +17,8 @@ layout(set = 0, binding = kGBufferBindingVertices) readonly buffer VertexBlock {
 layout(set = 0, binding = kGBufferBindingIndices) readonly buffer IndexBlock { uint indices[]; };
 layout(set = 1, binding = kGBufferBindingAlbedoTexture) uniform sampler2D albedoTexture;
 layout(push_constant) uniform PushBlock { GBufferPush push; };
+layout(constant_id = kGBufferSpecTextured) const bool kTextured = true;
+layout(constant_id = kGBufferSpecSurface) const bool kSurface = true;
 
 layout(location = kGBufferPosition) out vec4 outPosition;
 layout(location = kGBufferNormal) out vec4 outNormal;
@@ -42,7 +44,7 @@ void main() {
     }
     GpuMaterial m = materials[push.material];
     vec3 albedo = m.albedo;
-    if (m.albedoTexture != kNoTexture) {
+    if (kTextured && m.albedoTexture != kNoTexture) {
         // OBJ texture coordinates have v = 0 at the bottom; image row 0 is the top.
         albedo = texture(albedoTexture, vec2(inUv.x, 1.0 - inUv.y)).rgb;
     }
@@ -51,5 +53,6 @@ void main() {
     outAlbedo = vec4(albedo, 1.0);
     outEmission = vec4(gl_FrontFacing ? push.emission : vec3(0.0), 1.0);
     uint triangle = push.firstTriangle + uint(gl_PrimitiveID);
-    outSurface = vec4(float(triangle & 0xffffu), float(triangle >> 16), sampleBarycentrics(triangle));
+    outSurface = kSurface ? vec4(float(triangle & 0xffffu), float(triangle >> 16), sampleBarycentrics(triangle))
+                          : vec4(0.0);
 }

@@ -23,6 +23,14 @@ BL_CONST uint kGBufferSurface = 4u;  // the sample's triangle and where in it (a
                                      // low and high 16 bits (exact in float), z, w = barycentrics (b1, b2);
                                      // decode with blGBufferSurface (shaders/gpu/CameraSet.glsl)
 BL_CONST uint kGBufferAttachmentCount = 5u;
+// G-buffer specialization constants (gbuffer.frag.glsl), constant_id = index: the texture lookup
+// only where some material has an albedo texture, the surface channel (six vertex loads and the
+// barycentrics) only where the pass's reader decodes it; lavapipe runs a fragment's every branch
+// under a mask, so they cost every fragment unless compiled out (the reflective shadow cubes of
+// mode bidir, 6 x 256^2 texels a frame: 15 -> 10 ms on the Cornell box).
+BL_CONST uint kGBufferSpecTextured = 0u;
+BL_CONST uint kGBufferSpecSurface = 1u;
+BL_CONST uint kGBufferSpecCount = 2u;
 
 // Camera set: set 0 of every shading pass that runs per camera pixel (core/gpu/CameraPass.h,
 // shaders/gpu/CameraSet.glsl); each mode adds its own set 1.
