@@ -8,6 +8,7 @@
 #include "gpu/CameraPass.h"
 #include "bundle/EnvironmentShadowPass.h"
 #include "gpu/EmitterPointPass.h"
+#include "gpu/MaterialSpecialization.h"
 #include "gpu/PackedTextures.h"
 #include "gpu/ShadowCubePass.h"
 #include "modes/EmitterPointParameters.h"
@@ -275,6 +276,7 @@ void MultibounceMode::setScene(const Scene& scene, vk::Context* ctx) {
     specialization[shader::kMultibounceSpecPointLights] = scene.lights.empty() ? 0u : 1u;
     specialization[shader::kMultibounceSpecEmitterPoints] = mPlan.runs(kPassEmitterPoints) ? 1u : 0u;
     specialization[shader::kMultibounceSpecEnvironment] = mPlan.runs(kPassEnvironmentShadows) ? 1u : 0u;
+    gpu::appendMaterialSpecialization(specialization, scene.features());
     g->paths = vk::ComputePass<shader::MultibouncePush>(device, kSpv_modes_multibounce_paths_comp,
                                                         {g->camera->setLayout(), g->bound.layout()}, specialization);
     mGpu = std::move(g);

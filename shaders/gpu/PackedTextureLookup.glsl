@@ -1,9 +1,14 @@
 // Bilinear albedo lookups in the packed texture buffer (shaders/shared/PackedTextures.h,
 // core/gpu/PackedTextures.h): repeat wrap, texel centres at (i + 1/2) / size, texels decoded from
 // sRGB before filtering, exactly the reference's bilinearLookup (core/image/BilinearLookup.h).
-// Define BL_PACKED_TEXTURES_SET and BL_PACKED_TEXTURES_BINDING before including.
+// Define BL_PACKED_TEXTURES_SET and BL_PACKED_TEXTURES_BINDING before including, and
+// BL_ALBEDO_TEXTURES where a specialization constant says whether any material has a texture
+// (gpu/MaterialSpecialization.glsl).
 #ifndef BL_GPU_PACKED_TEXTURE_LOOKUP_GLSL
 #define BL_GPU_PACKED_TEXTURE_LOOKUP_GLSL
+#ifndef BL_ALBEDO_TEXTURES
+#define BL_ALBEDO_TEXTURES true
+#endif
 #include "shared/GpuTypes.h"
 #include "shared/PackedTextures.h"
 
@@ -41,7 +46,7 @@ vec3 blPackedTextureLookup(uint index, vec2 uv) {
 // Albedo of material m at OBJ texture coordinates uv (v = 0 at the bottom; image row 0 is the top):
 // its texture where it has one, else its constant albedo.
 vec3 blPackedTextureAlbedo(GpuMaterial m, vec2 uv) {
-    if (m.albedoTexture == kNoTexture) {
+    if (!BL_ALBEDO_TEXTURES || m.albedoTexture == kNoTexture) {
         return m.albedo;
     }
     return blPackedTextureLookup(m.albedoTexture, vec2(uv.x, 1.0 - uv.y));

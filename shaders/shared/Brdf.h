@@ -7,6 +7,18 @@
 #include "Frame.h"
 #include "CosinePower.h"
 
+// A shader pass may define these (before its first include of this file) as specialization
+// constants saying whether some material has a glossy lobe, an anisotropic one
+// (gpu/MaterialSpecialization.glsl): where not, the lobes compile out. The results are the same;
+// lavapipe, which runs both sides of every branch under a lane mask, stops paying for lobes no
+// material has. The CPU reference keeps them.
+#ifndef BL_GLOSSY_LOBES
+#define BL_GLOSSY_LOBES true
+#endif
+#ifndef BL_ANISOTROPIC_LOBES
+#define BL_ANISOTROPIC_LOBES true
+#endif
+
 BL_NAMESPACE_BEGIN
 
 BL_INLINE vec3 blLambert(vec3 albedo) { return albedo * kInvPi; }
@@ -50,10 +62,10 @@ BL_INLINE bool blHasGlossyLobe(GpuMaterial m) { return m.specular.x + m.specular
 
 // The glossy lobe of a material alone (zero without specular); symmetric in wi and wo.
 BL_INLINE vec3 blGlossyBrdf(GpuMaterial m, vec3 n, vec3 wi, vec3 wo) {
-    if (!blHasGlossyLobe(m)) {
+    if (!BL_GLOSSY_LOBES || !blHasGlossyLobe(m)) {
         return vec3(0.0f);
     }
-    if (blIsAnisotropic(m)) {
+    if (BL_ANISOTROPIC_LOBES && blIsAnisotropic(m)) {
         vec3 t;
         vec3 b;
         blOrthonormalBasis(n, t, b);

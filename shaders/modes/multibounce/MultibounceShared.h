@@ -208,7 +208,7 @@ BL_CONST uint kMultibounceAccumLayers = kAllPathLayers;
 BL_CONST uint kMultibounceSpecPointLights = 0u;   // point and spot lights (their shadow cubes)
 BL_CONST uint kMultibounceSpecEmitterPoints = 1u; // emitter points (area emitters)
 BL_CONST uint kMultibounceSpecEnvironment = 2u;   // environment directions
-BL_CONST uint kMultibounceSpecCount = 3u;
+BL_CONST uint kMultibounceSpecCount = 3u; // then the material constants (gpu/MaterialSpecialization.glsl)
 
 BL_NAMESPACE_END
 #endif

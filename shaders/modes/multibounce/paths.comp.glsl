@@ -22,6 +22,8 @@
 // vertex from the packed texture buffer (gpu/PackedTextureLookup.glsl: no descriptor indexing),
 // at the payload's UV (perfect bundles) or the splat's UV at the hit (imperfect bundles).
 #include "modes/multibounce/MultibounceShared.h"
+#define BL_MATERIAL_SPEC_FIRST kMultibounceSpecCount
+#include "gpu/MaterialSpecialization.glsl"
 #include "modes/multibounce/DrawSearch.glsl"
 #include "bundle/Traversal.glsl"
 #include "shared/Brdf.h"
