@@ -127,6 +127,8 @@ BundlePool::BundlePool(const vk::Context& ctx, const gpu::GpuScene& scene, const
 
     vk::GraphicsPipelineDesc desc; // no attachments, no depth test, no culling
     desc.layout = mDrawLayout.get();
+    desc.specialization.assign(shader::kBundleSpecHitPayload + 1, 0u);
+    desc.specialization[shader::kBundleSpecHitPayload] = options.payload == BundlePayload::Hit ? 1u : 0u;
     desc.vertexShader = kSpv_bundle_pool_triangles_vert;
     desc.vertexBindings = gpu::GpuScene::vertexBindings();
     desc.vertexAttributes = gpu::GpuScene::vertexAttributes();

@@ -26,6 +26,9 @@ layout(location = 3) flat in uint inSplat;
 #endif
 
 layout(push_constant) uniform PushBlock { BundleDrawPush push; };
+// The pool's payload kind is fixed for its pipelines' life (BundlePool): as a constant, the hit
+// payload's code leaves visibility-only builds, which lavapipe would otherwise run under a mask.
+layout(constant_id = kBundleSpecHitPayload) const bool kHitPayload = true;
 
 #ifdef BL_EXACT_DEPTH
 layout(set = 0, binding = 0) readonly buffer PlaneBlock { vec4 planes[]; };
@@ -114,7 +117,7 @@ void main() {
 #endif
     blPoolLink(push.headAddress, push.nodeAddress, pixel, index, depth, front);
 #if defined(BL_SPLATS) || defined(BL_EXACT_DEPTH)
-    if (push.payloadKind == kBundlePayloadHit) {
+    if (kHitPayload) {
         BundleHit hit;
 #ifdef BL_SPLATS
         hit.normal = blPackOctahedral(planeNormal);
