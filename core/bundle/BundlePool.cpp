@@ -127,7 +127,7 @@ BundlePool::BundlePool(const vk::Context& ctx, const gpu::GpuScene& scene, const
 
     vk::GraphicsPipelineDesc desc; // no attachments, no depth test, no culling
     desc.layout = mDrawLayout.get();
-    desc.specialization.assign(shader::kBundleSpecHitPayload + 1, 0u);
+    desc.specialization.assign(shader::kBundleSpecCount, 0u);
     desc.specialization[shader::kBundleSpecHitPayload] = options.payload == BundlePayload::Hit ? 1u : 0u;
     desc.vertexShader = kSpv_bundle_pool_triangles_vert;
     desc.vertexBindings = gpu::GpuScene::vertexBindings();
@@ -249,7 +249,6 @@ void BundlePool::recordTriangles(VkCommandBuffer cmd, std::uint32_t slot, const 
     push.nodeAddress = splitAddress(deviceAddress(*mContext, mNodes));
     push.payloadAddress = splitAddress(deviceAddress(*mContext, mPayload));
     push.counterAddress = splitAddress(deviceAddress(*mContext, mCounters));
-    push.payloadKind = mOptions.payload == BundlePayload::Hit ? shader::kBundlePayloadHit : shader::kBundlePayloadNone;
     if (splats) {
         if (splats->splatCount > 0) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mSplatPipeline.get());

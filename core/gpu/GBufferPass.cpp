@@ -15,7 +15,7 @@ constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 } // namespace
 
 GBufferPass::GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t width, std::uint32_t height,
-                         bool surface)
+                         GBufferSurface surface)
     : mScene(&scene), mWidth(width), mHeight(height) {
     VkDevice device = ctx.device();
     for (vk::GpuImage& a : mAttachments) {
@@ -59,7 +59,7 @@ GBufferPass::GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uin
     desc.layout = mPipelineLayout.get();
     desc.specialization.assign(shader::kGBufferSpecCount, 0u);
     desc.specialization[shader::kGBufferSpecTextured] = scene.scene().features().textured ? 1u : 0u;
-    desc.specialization[shader::kGBufferSpecSurface] = surface ? 1u : 0u;
+    desc.specialization[shader::kGBufferSpecSurface] = surface == GBufferSurface::Written ? 1u : 0u;
     mPipeline = vk::makeGraphicsPipeline(device, desc);
 }
 

@@ -18,15 +18,17 @@
 
 namespace bl::gpu {
 
+// Whether a G-buffer's reader decodes the surface attachment (kGBufferSurface): without it that
+// attachment holds zeros and the pass skips the barycentrics (Bindings.h).
+enum class GBufferSurface { Written, Unused };
+
 class GBufferPass {
 public:
     // Device memory per pixel: the rgba32f attachments and a 32-bit depth.
     static constexpr VkDeviceSize kBytesPerPixel = shader::kGBufferAttachmentCount * 16 + 4;
 
-    // `surface`: whether the reader decodes the surface attachment (kGBufferSurface); without it
-    // that attachment holds zeros and the pass skips the barycentrics (Bindings.h).
     GBufferPass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t width, std::uint32_t height,
-                bool surface = true);
+                GBufferSurface surface = GBufferSurface::Written);
 
     // Records the camera's upload and the pass: several records in one command buffer each see
     // their own camera, and cameraBuffer() holds the last recorded one for later passes.

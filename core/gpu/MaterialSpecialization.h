@@ -5,6 +5,7 @@
 
 #include "scene/SceneFeatures.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 #include <shared/MaterialSpecialization.h>

@@ -213,6 +213,8 @@ void AtlasMode::setScene(const Scene& scene, vk::Context* ctx) {
 
     VkDevice device = ctx->device();
     g->glossy.transfer = mPlan.runs(kPassGlossyTransfer);
+    // The exchange's constants: the same fields directionParams and iterate() fill the direction's
+    // split, glossy and transfer words from; the shader narrows those words by these (AtlasShared.h).
     std::array<std::uint32_t, shader::kAtlasSpecCount> exchangeSpec{};
     exchangeSpec[shader::kAtlasSpecSplit] = g->exchange.split ? 1u : 0u;
     exchangeSpec[shader::kAtlasSpecGlossy] = g->glossy.transfer ? 1u : 0u;
@@ -317,7 +319,7 @@ shader::AtlasDirection AtlasMode::directionParams(const shader::BundleFrame& fra
     const float density = g.exchange.directions->hemispherePdf(frame.direction);
     params.weight = frame.pixelSize * frame.pixelSize / (shader::kPi * density);
     params.inverseDensity = 1.0f / density;
-    params.glossy = g.glossy.transfer ? 1u : 0u;
+    params.glossy = g.glossy.transfer ? 1u : 0u;  // as the exchange's kAtlasSpecGlossy (setScene)
     params.next = g.exchange.directions->sample(directionIndex(mIterations + 1)).omega;
     return params;
 }
@@ -382,6 +384,7 @@ void AtlasMode::iterate(const IterationInfo& info) {
     params.touched = addressOf(*mContext, g.exchange.touched);
     params.scale = mTotalWeight > 0.0 ? float(1.0 / mTotalWeight) : 0.0f;
     params.previous = mIterations - 1u; // the first direction: ~0u is the init pass's tag, whose stored glossy transfer is zero
+    // transfer and split as the exchange's kAtlasSpecBounce and kAtlasSpecSplit (setScene)
     params.transfer = mOptions.bounce ? shader::kAtlasTransferBounce : shader::kAtlasTransferInterleaved;
     if (g.exchange.split) {
         params.split = 1u;

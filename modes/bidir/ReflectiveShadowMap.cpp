@@ -40,7 +40,7 @@ float texelProfile(const shader::GpuLight& light, std::uint32_t face, std::uint3
 ReflectiveShadowMap::ReflectiveShadowMap(const vk::Context& ctx, const gpu::GpuScene& scene, std::uint32_t resolution)
     : mCtx(&ctx), mScene(&scene), mResolution(resolution) {
     // Position, normal and albedo are what a VPL takes; the surface channel is left out.
-    mFace = std::make_unique<gpu::GBufferPass>(ctx, scene, resolution, resolution, false);
+    mFace = std::make_unique<gpu::GBufferPass>(ctx, scene, resolution, resolution, gpu::GBufferSurface::Unused);
     const std::size_t lights = std::max<std::size_t>(scene.scene().lights.size(), 1);
     const VkDeviceSize words = shader::kBidirRsmHeaderWords + lights * 6 * std::size_t(resolution) * resolution;
     mCdf = vk::Buffer(ctx, words * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload);

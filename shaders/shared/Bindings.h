@@ -26,8 +26,8 @@ BL_CONST uint kGBufferAttachmentCount = 5u;
 // G-buffer specialization constants (gbuffer.frag.glsl), constant_id = index: the texture lookup
 // only where some material has an albedo texture, the surface channel (six vertex loads and the
 // barycentrics) only where the pass's reader decodes it; lavapipe runs a fragment's every branch
-// under a mask, so they cost every fragment unless compiled out (the reflective shadow cubes of
-// mode bidir, 6 x 256^2 texels a frame: 15 -> 10 ms on the Cornell box).
+// under a mask, so they cost every fragment unless compiled out
+// (experiments/bench/results/specialization-lavapipe-2026-11-28.md).
 BL_CONST uint kGBufferSpecTextured = 0u;
 BL_CONST uint kGBufferSpecSurface = 1u;
 BL_CONST uint kGBufferSpecCount = 2u;

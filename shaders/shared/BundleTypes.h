@@ -67,6 +67,7 @@ BL_CONST uint kBundlePayloadHit = 1u;
 // Specialization constant of the build's fragment shaders (bundle/PoolAppend.glsl): 1 where the
 // pool stores the hit payload.
 BL_CONST uint kBundleSpecHitPayload = 0u;
+BL_CONST uint kBundleSpecCount = 1u;
 
 // Geometry kinds a bundle is built from.
 BL_CONST uint kBundleGeometryTriangles = 0u;
@@ -110,7 +111,7 @@ struct BundleDrawPush {
     uvec2 payloadAddress; // 0 without payload
     uvec2 counterAddress;
     uvec2 splatAddress;   // splats: the BundleSplat array
-    uint payloadKind;     // kBundlePayload*, as the pipelines' kBundleSpecHitPayload (which the shaders read)
+    uint unused0;         // (the payload kind is the pipelines' kBundleSpecHitPayload)
     uint material;        // triangles: the mesh's material
     uint firstPrimitive;  // global index of the draw's first triangle, or its first splat
     uint vertexOffset;    // triangles: the draw's vertex offset (exact variants fetch the triangle)

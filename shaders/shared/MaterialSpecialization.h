@@ -1,5 +1,5 @@
 // The order of the material specialization constants (gpu/MaterialSpecialization.glsl), after a
-// pass's own: constant_id = the pass's first + these. Host: gpu::materialSpecialization.
+// pass's own: constant_id = the pass's first + these. Host: gpu::appendMaterialSpecialization.
 #ifndef BL_SHARED_MATERIAL_SPECIALIZATION_H
 #define BL_SHARED_MATERIAL_SPECIALIZATION_H
 #include "Prelude.h"

@@ -65,7 +65,7 @@ TEST(StructLayout, BundleStructsMatchStd430) {
     EXPECT_EQ(offsetof(BundleCounters, excessHigh), 12u);
     EXPECT_EQ(offsetof(BundleDrawPush, frameAddress), 64u);
     EXPECT_EQ(offsetof(BundleDrawPush, splatAddress), 104u);
-    EXPECT_EQ(offsetof(BundleDrawPush, payloadKind), 112u);
+    EXPECT_EQ(offsetof(BundleDrawPush, unused0), 112u);
     EXPECT_EQ(offsetof(BundleDrawPush, vertexOffset), 124u);
     EXPECT_EQ(sizeof(BundleDrawPush), 128u); // the push-constant size every device guarantees
     EXPECT_EQ(offsetof(BundlePoolView, previous), 40u);

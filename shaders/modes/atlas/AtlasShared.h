@@ -298,10 +298,10 @@ BL_CONST uint kAtlasHighlightLightSet = 1u; // the direct pass's light set (GpuL
 
 // Specialization constants of the exchange pass (exchange.comp.glsl), constant_id = index: the
 // transfer paths the mode's plan fixes for the pipeline's life (AtlasMode::setScene). The
-// direction's words (AtlasDirection: split, glossy, transfer) say the same; as constants the
-// compiler drops the paths a run never takes, and lavapipe, which executes both sides of every
-// branch under a lane mask, stops paying for them on every bundle pixel (the Cornell box at
-// bundle_resolution 128: 8.2 -> 5.3 ms a direction without the split and glossy paths).
+// direction's words (AtlasDirection: split, glossy, transfer) say the same, and the exchange reads
+// them narrowed by these; as constants the compiler drops the paths a run never takes, which
+// lavapipe, running both sides of every branch under a lane mask, otherwise pays for on every
+// bundle pixel (experiments/bench/results/specialization-lavapipe-2026-11-28.md).
 BL_CONST uint kAtlasSpecSplit = 0u;  // 1: split channels (delay_indirect)
 BL_CONST uint kAtlasSpecGlossy = 1u; // 1: the glossy transfer atlas
 BL_CONST uint kAtlasSpecBounce = 2u; // 1: bounce-by-bounce transfer (a fixed sender), 0: interleaved

@@ -124,3 +124,28 @@ TEST_F(GBufferPassTest, SurfaceChannelLocatesEverySampleInItsTriangle) {
         EXPECT_LE(worst, 1e-3 * extent);
     }
 }
+
+// GBufferSurface::Unused (the reflective shadow maps' G-buffer): the surface attachment holds zeros
+// and every other attachment is what GBufferSurface::Written writes, texel for texel.
+TEST_F(GBufferPassTest, UnusedSurfaceChannelChangesNoOtherAttachment) {
+    Scene scene = loadScene(test::sourcePath("data/cornell-box/cornell.toml"));
+    scene.camera.resolution = {int(kSide), int(kSide)};
+    gpu::GpuScene gpuScene(ctx(), scene);
+    gpu::GBufferPass written(ctx(), gpuScene, kSide, kSide, gpu::GBufferSurface::Written);
+    gpu::GBufferPass unused(ctx(), gpuScene, kSide, kSide, gpu::GBufferSurface::Unused);
+    const shader::GpuCamera camera = makeGpuCamera(scene.camera, 0.0, gpuScene.cameraNear());
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+        written.record(cmd, camera, glm::vec2(0.0f), 0.0, nullptr);
+        unused.record(cmd, camera, glm::vec2(0.0f), 0.0, nullptr);
+    });
+    for (std::uint32_t a = 0; a < shader::kGBufferAttachmentCount; ++a) {
+        const std::vector<glm::vec4> w = positions(ctx(), written.attachment(a));
+        const std::vector<glm::vec4> u = positions(ctx(), unused.attachment(a));
+        if (a == shader::kGBufferSurface) {
+            EXPECT_EQ(differingPixels(u, std::vector<glm::vec4>(u.size(), glm::vec4(0.0f))), 0u);
+            EXPECT_GT(differingPixels(w, u), kSide * kSide / 2) << "the written surface channel must hold ids";
+        } else {
+            EXPECT_EQ(differingPixels(w, u), 0u) << "attachment " << a;
+        }
+    }
+}

@@ -1,9 +1,10 @@
 // The material specialization constants (core/gpu/MaterialSpecialization.h) come from the scene's
 // features, while the shaders test each material with blHasGlossyLobe, blIsAnisotropic and its
 // texture index. A constant that said "none" while some material had one would compile that
-// material's lobe or texture out of a pass (gpu/MaterialSpecialization.glsl): so on every case the
-// constants must say exactly what the shaders' own tests find, edge cases included (one channel of
-// specular, unequal exponents without specular, texture 0).
+// material's lobe or texture out of a pass (gpu/MaterialSpecialization.glsl). What must hold is
+// "constant off => no material has it"; on materials with non-negative specular (the TOML loader
+// requires [0, 1]) the two agree exactly, edge cases included (one channel of specular, unequal
+// exponents without specular, texture 0), and the test holds them to that.
 #include "gpu/MaterialSpecialization.h"
 #include "scene/Scene.h"
 #include "scene/ShaderConversions.h"
