@@ -74,10 +74,43 @@ vec3 blEmitterPointsLight(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, f
     return blEmitterPointsSum(x, n, m, albedo, wo, directionPdf, 0.0, true);
 }
 
-// The irradiance the points give x on the side of n (no MIS: the points alone).
-vec3 blEmitterPointsIrradiance(vec3 x, vec3 n) {
-    GpuMaterial unused = GpuMaterial(vec3(0.0), 0u, vec3(0.0), 0.0, 0.0, 0u, 0u, 0u);
-    return blEmitterPointsSum(x, n, unused, vec3(0.0), n, 0.0, 0.0, false);
+// The irradiance the points give x on each side of its surface (no MIS: the points alone). A
+// point lights at most one side, the one its direction makes cos_x > 0 with, so each point needs
+// one shadow lookup, made with that side's normal: the same terms blEmitterPointsSum(x, +-n, ...,
+// reflect = false) adds for each side, at half the shadow reads and half the code (llvmpipe runs
+// both sides of a branch, so a second call costs its full size).
+void blEmitterPointsIrradianceBothSides(vec3 x, vec3 n, out vec3 front, out vec3 back) {
+    front = vec3(0.0);
+    back = vec3(0.0);
+    uint count = blEmitterPointHeader.count;
+    uint resolution = blEmitterPointHeader.resolution;
+    for (uint k = 0u; k < count; ++k) {
+        GpuEmitterPoint p = blEmitterPoints[k];
+        vec3 d = x - p.position;
+        float r2 = dot(d, d);
+        if (!(r2 > 0.0)) {
+            continue;
+        }
+        vec3 fromPoint = d * inversesqrt(r2);
+        float cosY = dot(fromPoint, p.normal);
+        float cosN = -dot(n, fromPoint);
+        if (cosY <= 0.0 || cosN == 0.0) {
+            continue; // behind the emitting face, or in x's plane
+        }
+        vec3 sideNormal = cosN > 0.0 ? n : -n;
+        float cosX = abs(cosN);
+        float visibility = blShadowVisibilityTaps(BL_EMITTER_POINTS_MAP, kShadowCubeFaces * k, resolution,
+                                                  x - p.cubeCentre, sideNormal, kEmitterPointTaps);
+        if (visibility <= 0.0) {
+            continue;
+        }
+        vec3 light = p.emission * (cosX * cosY * visibility / (float(count) * p.areaPdf * r2));
+        if (cosN > 0.0) {
+            front += light;
+        } else {
+            back += light;
+        }
+    }
 }
 
 // The weight of the direction strategy where it meets an emitter of radiance `emission` at

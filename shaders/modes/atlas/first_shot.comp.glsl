@@ -44,10 +44,11 @@ void main() {
     float weights = 0.0;
     for (uint s = first.first[texel]; s < first.first[texel + 1u]; ++s) {
         AtlasSample point = samples.samples[s];
-        vec3 front, back;
+        vec3 front, back, pointsFront, pointsBack;
         blEnvironmentShadowIrradianceBothSides(point.position, point.normal, front, back);
-        irradiance[kAtlasFront] += point.weight * (blEmitterPointsIrradiance(point.position, point.normal) + front);
-        irradiance[kAtlasBack] += point.weight * (blEmitterPointsIrradiance(point.position, -point.normal) + back);
+        blEmitterPointsIrradianceBothSides(point.position, point.normal, pointsFront, pointsBack);
+        irradiance[kAtlasFront] += point.weight * (pointsFront + front);
+        irradiance[kAtlasBack] += point.weight * (pointsBack + back);
         weights += point.weight;
     }
     vec3 scale = AtlasTexels(push.texels).texels[texel].albedo / kPi / max(weights, 1e-30);
