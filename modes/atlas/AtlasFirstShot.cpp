@@ -9,6 +9,9 @@
 
 #include <modes/atlas/AtlasShared.h>
 #include <modes/atlas/first_shot.comp.spv.h>
+#include <shared/Random.h>
+
+#include <array>
 
 namespace bl {
 
@@ -92,8 +95,10 @@ void AtlasMode::setUpFirstShot(const Scene& scene) {
          vk::Bound::storageImage(shader::kAtlasFirstShotBindingMaps2, g.direct.emitterPoints->maps().view()),
          vk::Bound::storageBuffer(shader::kAtlasFirstShotBindingEnvironment, g.direct.environmentShadows->buffer()),
          vk::Bound::storageImage(shader::kAtlasFirstShotBindingEnvironmentMaps, g.direct.environmentShadows->maps().view())});
+    std::array<std::uint32_t, shader::kAtlasShotSpecCount> shotSpec{};
+    shotSpec[shader::kAtlasShotSpecAllSamples] = mOptions.shotAllSamples ? 1u : 0u;
     g.direct.firstShotPass = vk::ComputePass<shader::AtlasFirstShotPush>(device, kSpv_modes_atlas_first_shot_comp,
-                                                                         {g.direct.firstShotSet.layout()});
+                                                                         {g.direct.firstShotSet.layout()}, shotSpec);
 }
 
 void AtlasMode::recordFirstShot(VkCommandBuffer cmd, double time) {
@@ -111,6 +116,8 @@ void AtlasMode::recordFirstShot(VkCommandBuffer cmd, double time) {
     push.senders = addressOf(*mContext, g.exchange.senders);
     push.texelCount = g.link.texelCount;
     push.inverseShots = 1.0f / float(mIterations + 1);
+    push.shot = mIterations;
+    push.seedHash = shader::blHash(static_cast<std::uint32_t>(mSeed ^ (mSeed >> 32)));
     const std::uint32_t scope = g.timer.start(cmd, "first shot");
     g.direct.firstShotPass.dispatch(cmd, push, vk::groupCount(g.link.texelCount, shader::kAtlasGroupSize), g.direct.firstShotSet.sets());
     g.timer.stop(cmd, scope);

@@ -119,6 +119,8 @@
 //   light_samples      2       per side   n x n points per texel gather point/spot light
 //   first_shot         auto               the area emitters' and the environment's direct light shot
 //                                         into the direct atlas (auto: where the settings allow it)
+//   shot_samples       one                first shot: one light_samples point per texel and direction,
+//                                         drawn by its area (all: the whole grid, light_samples^2 x the cost)
 //   emitter_points     16      points     first shot: on the emitters per direction
 //   emitter_shadow_resolution 256 texels  first shot: side of each point's shadow cube face
 //   environment_shots  4       directions first shot: toward the environment per direction, by its
@@ -160,6 +162,7 @@ public:
     static constexpr const char* kGlossy = "glossy";
     static constexpr const char* kDelayIndirect = "delay_indirect";
     static constexpr const char* kFirstShot = "first_shot";
+    static constexpr const char* kShotSamples = "shot_samples";
     static constexpr const char* kEmitterPoints = "emitter_points";
     static constexpr const char* kEmitterShadowResolution = "emitter_shadow_resolution";
     static constexpr const char* kEnvironmentShots = kEnvironmentShotsKey;

@@ -26,6 +26,7 @@ AtlasModeOptions atlasModeOptions(const Settings& s) {
     o.glossy = s.getString(M::kGlossy);
     o.delayIndirect = uint32Of(M::kDelayIndirect);
     o.firstShot = s.getString(M::kFirstShot);
+    o.shotAllSamples = s.getString(M::kShotSamples) == "all";
     o.emitterPoints = uint32Of(M::kEmitterPoints);
     o.emitterShadowResolution = uint32Of(M::kEmitterShadowResolution);
     o.environmentShots = uint32Of(M::kEnvironmentShots);

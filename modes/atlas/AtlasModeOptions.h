@@ -30,6 +30,7 @@ struct AtlasModeOptions {
     std::string glossy;                    // glossy: transfer | gather | off
     std::uint32_t delayIndirect = 0;       // delay_indirect
     std::string firstShot;                 // first_shot: auto | on | off
+    bool shotAllSamples = false;           // shot_samples = all (else one sample point per texel and shot)
     std::uint32_t emitterPoints = 0;       // emitter_points
     std::uint32_t emitterShadowResolution = 0;
     std::uint32_t environmentShots = 0;    // environment_shots: the environment's shot directions per direction

@@ -57,6 +57,11 @@ std::vector<ParamSpec> AtlasMode::parameters() {
          "exchange then carrying reflected light only; it needs interleaved transfer, no delay_indirect and no glossy "
          "transport: auto = on where those hold, on = refuse settings that break them",
          0, 0, {"auto", "on", "off"}},
+        {kShotSamples, std::string("one"), "",
+         "the first shot's sample points per texel and direction: one = one of the light_samples grid drawn by its "
+         "area (a golden-ratio rotation per texel over the directions; unbiased, and light_samples^2 times fewer shadow "
+         "reads where the emitter points' own noise dominates), all = the whole grid",
+         0, 0, {"one", "all"}},
         {kMemoryCap, std::int64_t{0}, "MiB",
          "node storage limit of the bundle pool (0: half the largest device-local heap); a direction that needs more is "
          "refused",
@@ -100,7 +105,10 @@ PassPlan AtlasMode::plan(const Scene& scene) const {
                     std::to_string(o.environmentShadowResolution) + "^2 depth map each";
     }
     p.add(kPassFirstShot, "first shot", shot, choice.code,
-          shot ? shotWhat + ": their light averaged over each texel's sample points into the direct atlas" : choice.why);
+          shot ? shotWhat + (o.shotAllSamples ? ": their light averaged over each texel's sample points"
+                                              : ": their light at one sample point per texel, drawn by its area,") +
+                     " into the direct atlas"
+               : choice.why);
     std::string exchange = shot ? "consecutive hits exchange reflected radiance both ways (sender = direct + mean)"
                                 : "consecutive hits exchange radiance both ways (interleaved: sender = emission + mean)";
     exchange += !f.emissiveMeshes ? "; no emissive meshes"

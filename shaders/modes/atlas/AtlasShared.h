@@ -99,8 +99,14 @@ struct AtlasFirstShotPush {
     uvec2 senders;     // AtlasSenderRecord per texel side: `base` written
     uint texelCount;
     float inverseShots; // 1 / the shots summed after this one
+    uint shot;          // the shots summed before this one (shot_samples = one: which sample point)
+    uint seedHash;      // blHash of the run seed (shot_samples = one: each seed its own rotations)
 };
-BL_STATIC_ASSERT(sizeof(AtlasFirstShotPush) == 64, "AtlasFirstShotPush layout");
+BL_STATIC_ASSERT(sizeof(AtlasFirstShotPush) == 72, "AtlasFirstShotPush layout");
+// Specialization constant of the first shot (constant_id = index): 1 (shot_samples = all) lights
+// every sample point of a texel each shot; 0 (one) one of them, drawn by its area weight.
+BL_CONST uint kAtlasShotSpecAllSamples = 0u;
+BL_CONST uint kAtlasShotSpecCount = 1u;
 BL_CONST uint kAtlasFirstShotSet = 0u;
 BL_CONST uint kAtlasFirstShotBindingPoints = 0u; // GpuEmitterPointHeader + GpuEmitterPoint[]
 BL_CONST uint kAtlasFirstShotBindingMaps = 1u;   // the points' cubes (map 0 of the lookup; unused)

@@ -13,6 +13,7 @@
 // shot; its list ends receive nothing where the environment was shot). A part whose source the
 // scene lacks has no points or directions and adds nothing.
 #include "modes/atlas/AtlasBuffers.glsl"
+#include "shared/Random.h"
 #define BL_SHADOW_SET kAtlasFirstShotSet
 #define BL_SHADOW_BINDING kAtlasFirstShotBindingMaps
 #define BL_SHADOW_BINDING_2 kAtlasFirstShotBindingMaps2
@@ -26,6 +27,7 @@
 #include "gpu/EnvironmentShadowLight.glsl"
 
 layout(local_size_x = kAtlasGroupSize) in;
+layout(constant_id = kAtlasShotSpecAllSamples) const bool kAllSamples = false;
 layout(push_constant) uniform PushBlock { AtlasFirstShotPush push; };
 
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer AtlasShotSamples { AtlasSample samples[]; };
@@ -40,9 +42,36 @@ void main() {
     }
     AtlasShotSamples samples = AtlasShotSamples(push.samples);
     AtlasShotFirst first = AtlasShotFirst(push.first);
+    uint begin = first.first[texel];
+    uint end = first.first[texel + 1u];
+    if (!kAllSamples) {
+        // shot_samples = one: the sample s drawn with probability w_s / sum w, so its light alone
+        // is an unbiased estimate of the weighted mean the loop below forms over all of them. Each
+        // texel rotates a golden-ratio sequence over the shots (its start hashed from the texel and
+        // the seed): consecutive shots spread over the texel's surface as the grid does.
+        float total = 0.0;
+        for (uint s = begin; s < end; ++s) total += samples.samples[s].weight;
+        uint rotation = blHash(texel ^ push.seedHash) + push.shot * 2654435769u;
+        float target = float(rotation >> 8u) * (1.0 / 16777216.0) * total;
+        // The sample whose cumulative weight passes the target (it has weight, or the sum would
+        // not have moved past the target); where rounding leaves the target at the total, the
+        // last sample with any weight. None has weight: none is lit, as with every sample.
+        float below = 0.0;
+        uint chosen = end;
+        for (uint s = begin; s < end; ++s) {
+            float w = samples.samples[s].weight;
+            chosen = w > 0.0 ? s : chosen;
+            below += w;
+            if (target < below) {
+                break;
+            }
+        }
+        begin = chosen;
+        end = min(chosen + 1u, end);
+    }
     vec3 irradiance[2] = vec3[2](vec3(0.0), vec3(0.0));
     float weights = 0.0;
-    for (uint s = first.first[texel]; s < first.first[texel + 1u]; ++s) {
+    for (uint s = begin; s < end; ++s) {
         AtlasSample point = samples.samples[s];
         vec3 front, back, pointsFront, pointsBack;
         blEnvironmentShadowIrradianceBothSides(point.position, point.normal, front, back);
