@@ -51,7 +51,8 @@ void EmitterPointPass::record(VkCommandBuffer cmd, double time, vk::GpuTimer* ti
     }
     std::uint32_t scope = timer ? timer->start(cmd, "emitter points") : 0;
     for (std::uint32_t k = 0; k < mPoints.size(); ++k) {
-        mCubes.record(cmd, mPoints[k].cubeCentre, k, time, nullptr);
+        // A point lights only the side its emitter faces: each cube's faces behind it are cleared.
+        mCubes.record(cmd, mPoints[k].cubeCentre, k, time, nullptr, mPoints[k].normal);
     }
     if (timer) {
         timer->stop(cmd, scope);

@@ -30,8 +30,12 @@ public:
     // Renders every light's cube (cube l = light l) at scene `time`.
     void record(VkCommandBuffer cmd, double time, vk::GpuTimer* timer);
     // Renders cube `cube` from `position` (world space) with the scene at `time`; the other cubes
-    // keep their contents.
-    void record(VkCommandBuffer cmd, const glm::vec3& position, std::uint32_t cube, double time, vk::GpuTimer* timer);
+    // keep their contents. `front` (unit, or zero): the cube lights only receivers x with
+    // (x - position) . front >= 0 (a one-sided emitter's point), so only each face's front part
+    // (frontTexels) is rendered and the rest cleared to "nothing in the way": a face-on emitter
+    // renders one whole face and four halves instead of six faces.
+    void record(VkCommandBuffer cmd, const glm::vec3& position, std::uint32_t cube, double time, vk::GpuTimer* timer,
+                const glm::vec3& front = glm::vec3(0.0f));
 
     // The refresh rule every mode shares: a static scene's light cubes are rendered once, a scene
     // that moves (keyframed meshes or lights) needs them again whenever the scene time changes.
@@ -46,6 +50,11 @@ public:
     std::uint32_t cubeCount() const { return mCubes; }
 
     static constexpr std::uint32_t kFaces = 6;
+
+    // The texels of face `face` of a `resolution`^2 cube whose centre rays d can have
+    // d . front >= 0, as one rectangle with a texel's margin on every side (clamped to the face);
+    // nullopt where no ray of the face can. front = 0: the whole face.
+    static std::optional<VkRect2D> frontTexels(std::uint32_t face, const glm::vec3& front, std::uint32_t resolution);
     static constexpr std::uint32_t kBytesPerTexel = 8; // ShadowTexel.glsl: distance and normal
 
     // Device memory of `cubes` cubes of `resolution`^2 texels a face and the depth buffer they are
@@ -58,8 +67,10 @@ public:
 private:
     ShadowCubePass(const vk::Context& ctx, const GpuScene& scene, std::uint32_t resolution, std::uint32_t cubes,
                    std::uint32_t lights, bool normals);
-    // Renders the six faces of `cube` from `position`, leaving its layers in GENERAL.
-    void recordCube(VkCommandBuffer cmd, const glm::vec3& position, std::uint32_t cube, double time);
+    // Renders the six faces of `cube` from `position` (their front parts, see record), leaving its
+    // layers in GENERAL.
+    void recordCube(VkCommandBuffer cmd, const glm::vec3& position, std::uint32_t cube, double time,
+                    const glm::vec3& front = glm::vec3(0.0f));
 
     const GpuScene* mScene;
     std::uint32_t mResolution;
