@@ -37,6 +37,16 @@ layout(set = BL_EMITTER_POINTS_SET, binding = BL_EMITTER_POINTS_BINDING) readonl
 // vplDensity = P / (pi pOther) adds vplDensity p_A cos_y cos_x to the denominator above (0: none).
 // reflect = false: the irradiance at x instead (f = 1, m, albedo and wo unused), for a caller that
 // applies its own reflectance (atlas texels: albedo / pi).
+// Point p toward x: the squared distance, the unit direction from p to x and the cosine at p;
+// false where x lies behind the emitting face (or on p).
+bool blEmitterPointToward(GpuEmitterPoint p, vec3 x, out float r2, out vec3 fromPoint, out float cosY) {
+    vec3 d = x - p.position;
+    r2 = dot(d, d);
+    fromPoint = r2 > 0.0 ? d * inversesqrt(r2) : vec3(0.0);
+    cosY = dot(fromPoint, p.normal);
+    return r2 > 0.0 && cosY > 0.0;
+}
+
 vec3 blEmitterPointsSum(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float directionPdf, float vplDensity,
                         bool reflect) {
     uint count = blEmitterPointHeader.count;
@@ -44,17 +54,15 @@ vec3 blEmitterPointsSum(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, flo
     vec3 radiance = vec3(0.0);
     for (uint k = 0u; k < count; ++k) {
         GpuEmitterPoint p = blEmitterPoints[k];
-        vec3 d = x - p.position;
-        float r2 = dot(d, d);
-        if (!(r2 > 0.0)) {
+        float r2, cosY;
+        vec3 fromPoint;
+        if (!blEmitterPointToward(p, x, r2, fromPoint, cosY)) {
             continue;
         }
-        vec3 fromPoint = d * inversesqrt(r2);
         vec3 wi = -fromPoint;
-        float cosY = dot(fromPoint, p.normal);
         float cosX = dot(n, wi);
-        if (cosY <= 0.0 || cosX <= 0.0) {
-            continue; // behind the emitting face, or lit from the side the camera does not see
+        if (cosX <= 0.0) {
+            continue; // lit from the side the camera does not see
         }
         float visibility =
             blShadowVisibilityTaps(BL_EMITTER_POINTS_MAP, kShadowCubeFaces * k, resolution, x - p.cubeCentre, n,
@@ -86,16 +94,14 @@ void blEmitterPointsIrradianceBothSides(vec3 x, vec3 n, out vec3 front, out vec3
     uint resolution = blEmitterPointHeader.resolution;
     for (uint k = 0u; k < count; ++k) {
         GpuEmitterPoint p = blEmitterPoints[k];
-        vec3 d = x - p.position;
-        float r2 = dot(d, d);
-        if (!(r2 > 0.0)) {
+        float r2, cosY;
+        vec3 fromPoint;
+        if (!blEmitterPointToward(p, x, r2, fromPoint, cosY)) {
             continue;
         }
-        vec3 fromPoint = d * inversesqrt(r2);
-        float cosY = dot(fromPoint, p.normal);
         float cosN = -dot(n, fromPoint);
-        if (cosY <= 0.0 || cosN == 0.0) {
-            continue; // behind the emitting face, or in x's plane
+        if (cosN == 0.0) {
+            continue; // in x's plane
         }
         vec3 sideNormal = cosN > 0.0 ? n : -n;
         float cosX = abs(cosN);
