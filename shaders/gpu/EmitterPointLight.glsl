@@ -23,6 +23,27 @@ layout(set = BL_EMITTER_POINTS_SET, binding = BL_EMITTER_POINTS_BINDING) readonl
     GpuEmitterPoint blEmitterPoints[];
 };
 
+// Point k seen from x: the point, the squared distance, the unit direction from the point to x
+// and the cosine there; `lights` false where x lies behind the emitting face (or on the point).
+struct BlEmitterPointToward {
+    GpuEmitterPoint p;
+    float r2;
+    vec3 fromPoint;
+    float cosY;
+    bool lights;
+};
+
+BlEmitterPointToward blEmitterPointToward(uint k, vec3 x) {
+    BlEmitterPointToward t;
+    t.p = blEmitterPoints[k];
+    vec3 d = x - t.p.position;
+    t.r2 = dot(d, d);
+    t.fromPoint = t.r2 > 0.0 ? d * inversesqrt(t.r2) : vec3(0.0);
+    t.cosY = dot(t.fromPoint, t.p.normal);
+    t.lights = t.r2 > 0.0 && t.cosY > 0.0;
+    return t;
+}
+
 // Multiple importance sampling (balance heuristic) against a strategy that reaches the same
 // emitter point by a direction of solid-angle density directionPdf: the points' weight is
 //   M p_A / (M p_A + directionPdf cos_y / r^2),
@@ -37,43 +58,32 @@ layout(set = BL_EMITTER_POINTS_SET, binding = BL_EMITTER_POINTS_BINDING) readonl
 // vplDensity = P / (pi pOther) adds vplDensity p_A cos_y cos_x to the denominator above (0: none).
 // reflect = false: the irradiance at x instead (f = 1, m, albedo and wo unused), for a caller that
 // applies its own reflectance (atlas texels: albedo / pi).
-// Point p toward x: the squared distance, the unit direction from p to x and the cosine at p;
-// false where x lies behind the emitting face (or on p).
-bool blEmitterPointToward(GpuEmitterPoint p, vec3 x, out float r2, out vec3 fromPoint, out float cosY) {
-    vec3 d = x - p.position;
-    r2 = dot(d, d);
-    fromPoint = r2 > 0.0 ? d * inversesqrt(r2) : vec3(0.0);
-    cosY = dot(fromPoint, p.normal);
-    return r2 > 0.0 && cosY > 0.0;
-}
-
 vec3 blEmitterPointsSum(vec3 x, vec3 n, GpuMaterial m, vec3 albedo, vec3 wo, float directionPdf, float vplDensity,
                         bool reflect) {
     uint count = blEmitterPointHeader.count;
     uint resolution = blEmitterPointHeader.resolution;
     vec3 radiance = vec3(0.0);
     for (uint k = 0u; k < count; ++k) {
-        GpuEmitterPoint p = blEmitterPoints[k];
-        float r2, cosY;
-        vec3 fromPoint;
-        if (!blEmitterPointToward(p, x, r2, fromPoint, cosY)) {
+        BlEmitterPointToward t = blEmitterPointToward(k, x);
+        if (!t.lights) {
             continue;
         }
-        vec3 wi = -fromPoint;
+        vec3 wi = -t.fromPoint;
         float cosX = dot(n, wi);
         if (cosX <= 0.0) {
             continue; // lit from the side the camera does not see
         }
         float visibility =
-            blShadowVisibilityTaps(BL_EMITTER_POINTS_MAP, kShadowCubeFaces * k, resolution, x - p.cubeCentre, n,
+            blShadowVisibilityTaps(BL_EMITTER_POINTS_MAP, kShadowCubeFaces * k, resolution, x - t.p.cubeCentre, n,
                                    kEmitterPointTaps);
         if (visibility <= 0.0) {
             continue;
         }
         vec3 f = reflect ? blEvalBrdf(m, albedo, n, wi, wo) : vec3(1.0);
-        radiance += f * p.emission *
-                    (cosX * cosY * visibility /
-                     (float(count) * p.areaPdf * r2 + directionPdf * cosY + vplDensity * p.areaPdf * cosY * cosX));
+        radiance += f * t.p.emission *
+                    (cosX * t.cosY * visibility /
+                     (float(count) * t.p.areaPdf * t.r2 + directionPdf * t.cosY +
+                      vplDensity * t.p.areaPdf * t.cosY * cosX));
     }
     return radiance;
 }
@@ -93,24 +103,22 @@ void blEmitterPointsIrradianceBothSides(vec3 x, vec3 n, out vec3 front, out vec3
     uint count = blEmitterPointHeader.count;
     uint resolution = blEmitterPointHeader.resolution;
     for (uint k = 0u; k < count; ++k) {
-        GpuEmitterPoint p = blEmitterPoints[k];
-        float r2, cosY;
-        vec3 fromPoint;
-        if (!blEmitterPointToward(p, x, r2, fromPoint, cosY)) {
+        BlEmitterPointToward t = blEmitterPointToward(k, x);
+        if (!t.lights) {
             continue;
         }
-        float cosN = -dot(n, fromPoint);
+        float cosN = -dot(n, t.fromPoint);
         if (cosN == 0.0) {
             continue; // in x's plane
         }
         vec3 sideNormal = cosN > 0.0 ? n : -n;
         float cosX = abs(cosN);
         float visibility = blShadowVisibilityTaps(BL_EMITTER_POINTS_MAP, kShadowCubeFaces * k, resolution,
-                                                  x - p.cubeCentre, sideNormal, kEmitterPointTaps);
+                                                  x - t.p.cubeCentre, sideNormal, kEmitterPointTaps);
         if (visibility <= 0.0) {
             continue;
         }
-        vec3 light = p.emission * (cosX * cosY * visibility / (float(count) * p.areaPdf * r2));
+        vec3 light = t.p.emission * (cosX * t.cosY * visibility / (float(count) * t.p.areaPdf * t.r2));
         if (cosN > 0.0) {
             front += light;
         } else {
