@@ -213,32 +213,59 @@ void BundlePool::recordReset(VkCommandBuffer cmd) const {
 
 void BundlePool::recordBuild(VkCommandBuffer cmd, std::uint32_t slot, const shader::BundleFrame& frame,
                              const BundleGeometry& geometry, vk::GpuTimer* timer) const {
-    if (geometry.kind == shader::kBundleGeometryTriangles) {
-        recordTriangles(cmd, slot, frame, geometry.time, mTrianglePipeline.get(), "bundle build", timer);
-    } else {
-        recordTriangles(cmd, slot, frame, 0.0, VK_NULL_HANDLE, "bundle build", timer, &geometry);
+    const SlotBuild build{slot, frame, geometry};
+    recordBuilds(cmd, std::span<const SlotBuild>(&build, 1), timer);
+}
+
+void BundlePool::recordBuilds(VkCommandBuffer cmd, std::span<const SlotBuild> builds, vk::GpuTimer* timer) const {
+    // A slot twice would have its heads cleared after its first build's barrier had passed.
+    std::vector<bool> seen(mOptions.slots, false);
+    for (const SlotBuild& b : builds) {
+        if (b.slot < seen.size() && seen[b.slot]) {
+            throw Error("bundle pool: slot " + std::to_string(b.slot) + " twice in one batch of builds");
+        }
+        if (b.slot < seen.size()) seen[b.slot] = true;
     }
+    for (const SlotBuild& b : builds) {
+        recordSlotStart(cmd, b.slot, b.frame);
+    }
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                      VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    for (const SlotBuild& b : builds) {
+        const bool triangles = b.geometry.kind == shader::kBundleGeometryTriangles;
+        recordRasterization(cmd, b.slot, b.frame, triangles ? b.geometry.time : 0.0,
+                            triangles ? mTrianglePipeline.get() : VK_NULL_HANDLE, "bundle build", timer,
+                            triangles ? nullptr : &b.geometry);
+    }
+    recordBatchEnd(cmd);
 }
 
 void BundlePool::recordCount(VkCommandBuffer cmd, const shader::BundleFrame& frame, double time,
                              vk::GpuTimer* timer) const {
-    recordTriangles(cmd, 0, frame, time, mCountPipeline.get(), "rasterization floor", timer);
+    recordSlotStart(cmd, 0, frame);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                      VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    recordRasterization(cmd, 0, frame, time, mCountPipeline.get(), "rasterization floor", timer, nullptr);
+    recordBatchEnd(cmd);
 }
 
-void BundlePool::recordTriangles(VkCommandBuffer cmd, std::uint32_t slot, const shader::BundleFrame& frame, double time,
-                                 VkPipeline pipeline, const char* passName, vk::GpuTimer* timer,
-                                 const BundleGeometry* splats) const {
+void BundlePool::recordSlotStart(VkCommandBuffer cmd, std::uint32_t slot, const shader::BundleFrame& frame) const {
     checkSlot(slot, frame);
     const VkDeviceSize headOffset = VkDeviceSize(slot) * mOptions.slotPixels * sizeof(std::uint32_t);
     const VkDeviceSize frameOffset = VkDeviceSize(slot) * sizeof(shader::BundleFrame);
-    const std::uint32_t scope = timer ? timer->start(cmd, passName) : 0;
     // The frame goes into the command stream, not a host-written buffer: every build recorded in
     // one command buffer sees its own.
     vkCmdUpdateBuffer(cmd, mFrames.get(), frameOffset, sizeof(frame), &frame);
     vkCmdFillBuffer(cmd, mHeads.get(), headOffset, VkDeviceSize(frame.width) * frame.height * sizeof(std::uint32_t),
                     shader::kBundleNil);
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                      VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+}
+
+void BundlePool::recordRasterization(VkCommandBuffer cmd, std::uint32_t slot, const shader::BundleFrame& frame,
+                                     double time, VkPipeline pipeline, const char* passName, vk::GpuTimer* timer,
+                                     const BundleGeometry* splats) const {
+    const VkDeviceSize headOffset = VkDeviceSize(slot) * mOptions.slotPixels * sizeof(std::uint32_t);
+    const VkDeviceSize frameOffset = VkDeviceSize(slot) * sizeof(shader::BundleFrame);
+    const std::uint32_t scope = timer ? timer->start(cmd, passName) : 0;
     vk::RenderTargets targets;
     targets.extent = {frame.width, frame.height};
     targets.viewport = bundleViewport(frame);
@@ -272,6 +299,9 @@ void BundlePool::recordTriangles(VkCommandBuffer cmd, std::uint32_t slot, const 
     }
     vkCmdEndRendering(cmd);
     if (timer) timer->stop(cmd, scope);
+}
+
+void BundlePool::recordBatchEnd(VkCommandBuffer cmd) const {
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                           VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_HOST_BIT);
@@ -288,12 +318,16 @@ void BundlePool::recordStatusCopy(VkCommandBuffer cmd) const {
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_PIPELINE_STAGE_2_HOST_BIT);
 }
 
-void BundlePool::recordSort(VkCommandBuffer cmd, std::uint32_t slot, vk::GpuTimer* timer) const {
+void BundlePool::recordSort(VkCommandBuffer cmd, std::uint32_t first, std::uint32_t count, vk::GpuTimer* timer) const {
+    if (count == 0 || first + count > slots()) {
+        throw Error("bundle sort: slots " + std::to_string(first) + " + " + std::to_string(count) + " of a pool of " +
+                    std::to_string(slots()));
+    }
     const std::uint32_t scope = timer ? timer->start(cmd, "bundle sort") : 0;
     shader::BundlePoolPush push{};
     push.pool = view();
-    push.slot = slot;
-    mSort.dispatch(cmd, push, vk::groupCount(mOptions.slotPixels, shader::kBundleSortGroupSize));
+    push.slot = first; // the shader adds the workgroup's y
+    mSort.dispatch(cmd, push, glm::uvec3(vk::groupCount(mOptions.slotPixels, shader::kBundleSortGroupSize), count, 1));
     if (timer) timer->stop(cmd, scope);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |

@@ -6,6 +6,7 @@
 // Usage, per command buffer:
 //   pool.recordReset(cmd);                       // the allocator starts empty
 //   pool.recordBuild(cmd, slot, frame, geometry); // for any slots, triangles or point splats
+//                                                 // (recordBuilds: several slots, one set of barriers)
 //   pool.recordSort(cmd, slot);                  // optional: depth order + O(1) neighbours
 //   ... consumer passes read pool.view() and skip their work if blBundlePoolOverflowed() ...
 // then, after the fence: status() says whether the builds fit; if not, grow() and redo the
@@ -25,6 +26,7 @@
 #include "vk/Pipeline.h"
 
 #include <shared/BundleTypes.h>
+#include <span>
 #include <vector>
 
 namespace bl {
@@ -78,11 +80,26 @@ public:
     void recordReset(VkCommandBuffer cmd) const;
     void recordBuild(VkCommandBuffer cmd, std::uint32_t slot, const shader::BundleFrame& frame,
                      const BundleGeometry& geometry, vk::GpuTimer* timer = nullptr) const;
+    // One slot's build of a batch.
+    struct SlotBuild {
+        std::uint32_t slot = 0;
+        shader::BundleFrame frame{};
+        BundleGeometry geometry;
+    };
+    // The builds of several slots (distinct), as recordBuild each, but with one barrier before
+    // their rasterizations and one after, and one status copy: builds of different slots share
+    // only the node allocator, whose atomics need no barrier between them. A timer scope per slot.
+    void recordBuilds(VkCommandBuffer cmd, std::span<const SlotBuild> builds, vk::GpuTimer* timer = nullptr) const;
     // The benchmark floor: the same rasterization of the scene's triangles, counting fragments
     // (into the allocator: status().requested) and storing nothing.
     void recordCount(VkCommandBuffer cmd, const shader::BundleFrame& frame, double time,
                      vk::GpuTimer* timer = nullptr) const;
-    void recordSort(VkCommandBuffer cmd, std::uint32_t slot, vk::GpuTimer* timer = nullptr) const;
+    // Sorts slots first .. first + count - 1 in one dispatch (one timer scope and barrier for all:
+    // a mode that sorts its K bundles pays the per-dispatch cost once, not K times).
+    void recordSort(VkCommandBuffer cmd, std::uint32_t first, std::uint32_t count, vk::GpuTimer* timer = nullptr) const;
+    void recordSort(VkCommandBuffer cmd, std::uint32_t slot, vk::GpuTimer* timer = nullptr) const {
+        recordSort(cmd, slot, 1, timer);
+    }
     // Walks every list of the slot once, adding into the BundleListStats at `stats` (the buffer
     // must be zeroed before).
     void recordStatistics(VkCommandBuffer cmd, std::uint32_t slot, VkDeviceAddress stats,
@@ -119,9 +136,14 @@ public:
 private:
     void allocateNodes(std::uint64_t nodes);
     void checkSlot(std::uint32_t slot, const shader::BundleFrame& frame) const;
-    void recordTriangles(VkCommandBuffer cmd, std::uint32_t slot, const shader::BundleFrame& frame, double time,
-                         VkPipeline pipeline, const char* passName, vk::GpuTimer* timer,
-                         const BundleGeometry* splats = nullptr) const;
+    // The slot's frame into the frame buffer and its heads cleared (before the batch's barrier).
+    void recordSlotStart(VkCommandBuffer cmd, std::uint32_t slot, const shader::BundleFrame& frame) const;
+    // The slot's rasterization: the scene's triangles at `time` with `pipeline`, or `splats`.
+    void recordRasterization(VkCommandBuffer cmd, std::uint32_t slot, const shader::BundleFrame& frame, double time,
+                             VkPipeline pipeline, const char* passName, vk::GpuTimer* timer,
+                             const BundleGeometry* splats) const;
+    // After a batch: its writes visible to every later stage, and the status copy.
+    void recordBatchEnd(VkCommandBuffer cmd) const;
 
     const vk::Context* mContext;
     const gpu::GpuScene* mScene;

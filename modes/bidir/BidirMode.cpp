@@ -245,9 +245,11 @@ void BidirMode::buildBundles(const IterationInfo& info) {
         mContext->submitAndWait([&](VkCommandBuffer cmd) {
             g.timer.begin(cmd);
             g.bundles.pool->recordReset(cmd);
+            std::vector<BundlePool::SlotBuild> builds(slots);
             for (std::uint32_t k = 0; k < slots; ++k) {
-                g.bundles.pool->recordBuild(cmd, k, frames[k], BundleGeometry::triangles(info.time), &g.timer);
+                builds[k] = {k, frames[k], BundleGeometry::triangles(info.time)};
             }
+            g.bundles.pool->recordBuilds(cmd, builds, &g.timer);
         });
         g.timer.collect();
     }, g.bundles.rebuilds);

@@ -292,17 +292,17 @@ void MultibounceMode::recordBundles(VkCommandBuffer cmd, std::uint32_t iteration
     if (g.bundles.points) {
         g.bundles.points->record(cmd, static_cast<std::uint32_t>(info.seed), iteration, info.time, &g.timer);
     }
+    std::vector<BundlePool::SlotBuild> builds(slots);
     for (std::uint32_t k = 0; k < slots; ++k) {
         const BundleDirection dir = g.bundles.directions->sample(iteration * slots + k);
-        const shader::BundleFrame frame =
+        builds[k].slot = k;
+        builds[k].frame =
             bundleFrameForSphere(dir.omega, dir.rotation, g.bundles.bounds.center(), g.bundles.bounds.radius(), resolution);
-        const BundleGeometry geometry = g.bundles.points ? BundleGeometry::pointSplats(g.bundles.points->splats(k), g.bundles.points->perDirection())
-                                                 : BundleGeometry::triangles(info.time);
-        g.bundles.pool->recordBuild(cmd, k, frame, geometry, &g.timer);
+        builds[k].geometry = g.bundles.points ? BundleGeometry::pointSplats(g.bundles.points->splats(k), g.bundles.points->perDirection())
+                                              : BundleGeometry::triangles(info.time);
     }
-    for (std::uint32_t k = 0; k < slots; ++k) {
-        g.bundles.pool->recordSort(cmd, k, &g.timer);
-    }
+    g.bundles.pool->recordBuilds(cmd, builds, &g.timer);
+    g.bundles.pool->recordSort(cmd, 0, slots, &g.timer);
 }
 
 // Makes this iteration's K bundles: built at the end of the previous iteration's submission, or

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Orders every list of one pool slot by depth along omega (nearest to the frame's origin plane
+// Orders every list of pool slot push.slot + gl_WorkGroupID.y (one dispatch sorts consecutive slots) by depth along omega (nearest to the frame's origin plane
 // first), keeping each node's face bit, and records each node's predecessor: afterwards a walk
 // steps to the neighbour on either side in O(1) (Traversal.glsl: blBundleSortedNext/Previous).
 // Nodes stay where the build put them; only the links change. Ties (coplanar duplicates) are
@@ -13,12 +13,13 @@ layout(push_constant) uniform PushBlock { BundlePoolPush push; };
 bool before(float depthA, uint a, float depthB, uint b) { return depthA < depthB || (depthA == depthB && a < b); }
 
 void main() {
-    BundleFrame frame = blBundlePoolFrame(push.pool, push.slot);
+    uint slot = push.slot + gl_WorkGroupID.y;
+    BundleFrame frame = blBundlePoolFrame(push.pool, slot);
     uint pixel = gl_GlobalInvocationID.x;
     if (pixel >= frame.width * frame.height) {
         return;
     }
-    BundleHeads heads = blBundlePoolHeads(push.pool, push.slot);
+    BundleHeads heads = blBundlePoolHeads(push.pool, slot);
     BundleNodes nodes = BundleNodes(push.pool.nodes);
     uint head = heads.heads[pixel] & kBundleIndexMask;
 
