@@ -7,7 +7,8 @@ namespace bl::gpu {
 namespace {
 // How far a point's shadow cube centre sits in front of its emitter, as a fraction of the scene's
 // radius: ten times the cubes' near plane (lightClearance), so the emitter's own plane, edge-on
-// from y itself, lies clearly behind the centre; every receiver it lights is in front of it.
+// from y itself, lies clearly behind the centre. The shaders light only receivers in front of the
+// centre's plane (EmitterPointLight.glsl), which the cube's front parts hold (frontTexels).
 constexpr float kLiftFraction = 1e-4f;
 } // namespace
 

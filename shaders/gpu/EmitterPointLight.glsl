@@ -24,7 +24,10 @@ layout(set = BL_EMITTER_POINTS_SET, binding = BL_EMITTER_POINTS_BINDING) readonl
 };
 
 // Point k seen from x: the point, the squared distance, the unit direction from the point to x
-// and the cosine there; `lights` false where x lies behind the emitting face (or on the point).
+// and the cosine there; `lights` false where x lies behind the emitting face (or on the point) or
+// not in front of the point's cube centre (lifted 1e-4 of the scene radius off the emitter): the
+// cube renders only what lies in front of its centre (ShadowCubePass::frontTexels), and a receiver
+// that close to the emitter's plane has cos_y below 1e-4 of the scene radius over its distance.
 struct BlEmitterPointToward {
     GpuEmitterPoint p;
     float r2;
@@ -40,7 +43,7 @@ BlEmitterPointToward blEmitterPointToward(uint k, vec3 x) {
     t.r2 = dot(d, d);
     t.fromPoint = t.r2 > 0.0 ? d * inversesqrt(t.r2) : vec3(0.0);
     t.cosY = dot(t.fromPoint, t.p.normal);
-    t.lights = t.r2 > 0.0 && t.cosY > 0.0;
+    t.lights = t.r2 > 0.0 && t.cosY > 0.0 && dot(x - t.p.cubeCentre, t.p.normal) > 0.0;
     return t;
 }
 

@@ -86,7 +86,8 @@ struct AtlasLightRecord {
 };
 BL_STATIC_ASSERT(sizeof(AtlasLightRecord) == 32, "AtlasLightRecord layout");
 // First shot (first_shot = auto | on): each direction, the light of that iteration's emitter points
-// (gpu/EmitterPointPass.h) at every texel's sample points joins a running sum, and the direct atlas
+// (gpu/EmitterPointPass.h) and environment directions at a texel's sample points (shot_samples =
+// one: one of them, drawn by its area; all: every one) joins a running sum, and the direct atlas
 // becomes the point/spot lights' part + the sum's mean; the sender records' constant part is that,
 // without the emission, so the exchange carries reflected light only (first_shot.comp.glsl).
 struct AtlasFirstShotPush {
