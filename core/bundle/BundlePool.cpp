@@ -318,7 +318,7 @@ void BundlePool::recordStatusCopy(VkCommandBuffer cmd) const {
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_PIPELINE_STAGE_2_HOST_BIT);
 }
 
-void BundlePool::recordSort(VkCommandBuffer cmd, std::uint32_t first, std::uint32_t count, vk::GpuTimer* timer) const {
+void BundlePool::recordSorts(VkCommandBuffer cmd, std::uint32_t first, std::uint32_t count, vk::GpuTimer* timer) const {
     if (count == 0 || first + count > slots()) {
         throw Error("bundle sort: slots " + std::to_string(first) + " + " + std::to_string(count) + " of a pool of " +
                     std::to_string(slots()));

@@ -8,6 +8,7 @@
 //   pool.recordBuild(cmd, slot, frame, geometry); // for any slots, triangles or point splats
 //                                                 // (recordBuilds: several slots, one set of barriers)
 //   pool.recordSort(cmd, slot);                  // optional: depth order + O(1) neighbours
+//                                                 // (recordSorts: consecutive slots, one dispatch)
 //   ... consumer passes read pool.view() and skip their work if blBundlePoolOverflowed() ...
 // then, after the fence: status() says whether the builds fit; if not, grow() and redo the
 // iteration (nothing partial may be kept). BundleBuilder wraps this into grow-and-tile for modes
@@ -96,9 +97,9 @@ public:
                      vk::GpuTimer* timer = nullptr) const;
     // Sorts slots first .. first + count - 1 in one dispatch (one timer scope and barrier for all:
     // a mode that sorts its K bundles pays the per-dispatch cost once, not K times).
-    void recordSort(VkCommandBuffer cmd, std::uint32_t first, std::uint32_t count, vk::GpuTimer* timer = nullptr) const;
+    void recordSorts(VkCommandBuffer cmd, std::uint32_t first, std::uint32_t count, vk::GpuTimer* timer = nullptr) const;
     void recordSort(VkCommandBuffer cmd, std::uint32_t slot, vk::GpuTimer* timer = nullptr) const {
-        recordSort(cmd, slot, 1, timer);
+        recordSorts(cmd, slot, 1, timer);
     }
     // Walks every list of the slot once, adding into the BundleListStats at `stats` (the buffer
     // must be zeroed before).

@@ -302,7 +302,7 @@ void MultibounceMode::recordBundles(VkCommandBuffer cmd, std::uint32_t iteration
                                               : BundleGeometry::triangles(info.time);
     }
     g.bundles.pool->recordBuilds(cmd, builds, &g.timer);
-    g.bundles.pool->recordSort(cmd, 0, slots, &g.timer);
+    g.bundles.pool->recordSorts(cmd, 0, slots, &g.timer);
 }
 
 // Makes this iteration's K bundles: built at the end of the previous iteration's submission, or

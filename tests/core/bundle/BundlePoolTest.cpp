@@ -3,6 +3,7 @@
 // pixels; the sort pass against Embree's sorted hits, with O(1) neighbours both ways; the hit
 // payload (triangle, barycentrics, material, UV, normal) against the scene; point splats cut to
 // discs; and the overflow contract (exact 64-bit request count, nothing out of range stored).
+#include "base/Error.h"
 #include "bundle/BundleFrame.h"
 #include "bundle/BundlePool.h"
 #include "bundle/DirectionSampler.h"
@@ -76,16 +77,15 @@ protected:
         return frames;
     }
 
-    // Builds every frame into its slot in one command buffer (and sorts each when asked).
+    // Builds every frame into its slot in one command buffer, as one batch (recordBuilds: the
+    // modes' way), and sorts them all in one dispatch when asked.
     BundlePoolStatus buildAll(BundlePool& pool, const std::vector<shader::BundleFrame>& frames, bool sort) {
+        std::vector<BundlePool::SlotBuild> builds;
+        for (std::uint32_t s = 0; s < frames.size(); ++s) builds.push_back({s, frames[s], BundleGeometry::triangles(0.0)});
         ctx().submitAndWait([&](VkCommandBuffer cmd) {
             pool.recordReset(cmd);
-            for (std::uint32_t s = 0; s < frames.size(); ++s) {
-                pool.recordBuild(cmd, s, frames[s], BundleGeometry::triangles(0.0));
-            }
-            for (std::uint32_t s = 0; sort && s < frames.size(); ++s) {
-                pool.recordSort(cmd, s);
-            }
+            pool.recordBuilds(cmd, builds);
+            if (sort) pool.recordSorts(cmd, 0, static_cast<std::uint32_t>(frames.size()));
         });
         return pool.status();
     }
@@ -152,6 +152,25 @@ TEST_F(BundlePoolTest, SixtyFourResidentBundlesMatchEmbreeAllHits) {
     EXPECT_GE(double(agree), 0.995 * double(checked));
     EXPECT_EQ(unsorted, 0u);
     EXPECT_EQ(badLinks, 0u);
+}
+
+// A batch names each slot once (a second build of a slot would clear its heads after the batch's
+// barrier), and a sort stays within the pool's slots.
+TEST_F(BundlePoolTest, BatchesRefuseARepeatedSlotAndSortsStayInThePool) {
+    BundlePoolOptions options;
+    options.slots = 4;
+    options.slotPixels = kResolution * kResolution;
+    options.sortable = true;
+    BundlePool pool(ctx(), *gpuScene, options);
+    const auto frames = randomFrames(2, 5);
+    const std::vector<BundlePool::SlotBuild> twice{{1, frames[0], BundleGeometry::triangles(0.0)},
+                                                   {1, frames[1], BundleGeometry::triangles(0.0)}};
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+        EXPECT_THROW(pool.recordBuilds(cmd, twice), Error);
+        EXPECT_THROW(pool.recordSorts(cmd, 3, 2), Error);
+        EXPECT_THROW(pool.recordSorts(cmd, 0, 0), Error);
+        pool.recordReset(cmd); // the command buffer stays valid
+    });
 }
 
 // The hit payload describes the surface each fragment lies on: its triangle's plane contains the
