@@ -76,9 +76,8 @@ std::vector<ParamSpec> AtlasMode::parameters() {
                                         "the first shot (first_shot), the area emitters' direct light", 1);
     return withEnvironmentShadowParameters(
         std::move(params), "direction",
-        "the first shot (first_shot), the environment's direct light at the texels' sample points (shot_samples); 0: the "
-        "exchange's "
-        "list ends carry the environment");
+        "the first shot (first_shot), the environment's direct light at the texels' sample points (shot_samples); "
+        "0: the exchange's list ends carry the environment");
 }
 
 PassPlan AtlasMode::plan(const Scene& scene) const {

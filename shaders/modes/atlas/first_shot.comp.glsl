@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Mode atlas, the first shot (first_shot = auto | on; radiosity's "shoot the light sources first"):
 // one invocation per texel averages, over its sample points (modes/atlas/TexelSamples.h, weighted
-// by area; shot_samples = one: one of them drawn by that weight, an unbiased estimate of the mean), the irradiance this iteration's emitter points (gpu/EmitterPointLight.glsl) and
+// by area; shot_samples = one: one of them drawn by that weight, an unbiased estimate of the
+// mean), the irradiance this iteration's emitter points (gpu/EmitterPointLight.glsl) and
 // environment directions (gpu/EnvironmentShadowLight.glsl: a depth map each) give each side of the
 // surface, as the direct pass does for point lights:
 //   L_shot(T, side) = albedo_T / pi * sum_s w_s (E_points(s, side) + E_environment(s, side)) / sum_s w_s,
