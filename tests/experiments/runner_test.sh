@@ -96,6 +96,29 @@ sys.exit(0 if colours > 200 else 1)
 PY
     echo "screenshot: $out/screenshot.png"
     ;;
+suite_summary)
+    # experiments/suite/summary.py on a made-up results directory whose figures are known: the
+    # path tracer's relMSE = the reference's noise 1e-4 + its own 1e-4 * 1024 / 2048 spp; atlas
+    # 1.1e-3, of which 1e-3 its own. Measured ratio 1.1e-3 / 1.5e-4 = 7.33x; noise-corrected
+    # 1e-3 / 5e-5 = 20x (22x if the noise were not taken off, 6.67x against the path tracer's
+    # measured relMSE less the noise read as 1.5e-4).
+    r="$out/results"
+    mkdir -p "$r/tasks/pt" "$r/tasks/atlas"
+    printf '[reference]\nspp = 1024\n' >"$r/experiment.toml"
+    printf 'iteration,wall_seconds,relmse\n1,0.5,0.5\n2,1.0,0.05\n' | tee "$r/tasks/pt/metrics.csv" >"$r/tasks/atlas/metrics.csv"
+    {
+        echo "scene,label,seed,iterations,wall_seconds,relmse,mean_ratio_r,mean_ratio_g,mean_ratio_b,reference_noise_relmse,dir"
+        echo "box,path-tracer,0,2048,10,1.5e-4,1,1,1,1e-4,tasks/pt"
+        echo "box,path-tracer,1,2048,10,1.5e-4,1,1,1,1e-4,tasks/pt"
+        echo "box,atlas,0,40,10,1.1e-3,1,1,1,1e-4,tasks/atlas"
+        echo "box,atlas,1,40,10,1.1e-3,1,1,1,1e-4,tasks/atlas"
+    } >"$r/results.csv"
+    /usr/bin/python3 experiments/suite/summary.py "$r" >"$out/report.md" || fail "summary.py failed"
+    grep -q '^| box | atlas | 40 | 0.0011 | 1 | — | — | .* | 7.33x | 20x |$' "$out/report.md" ||
+        { cat "$out/report.md"; fail "atlas row: expected measured 7.33x, noise-corrected 20x"; }
+    grep -q '^| box | 0.0001 | 5e-05 | 5e-05 |$' "$out/report.md" ||
+        { cat "$out/report.md"; fail "path tracer check row: noise 1e-4, predicted and measured 5e-5"; }
+    ;;
 *)
     fail "unknown case $case_name"
     ;;
