@@ -5,10 +5,30 @@
 Every figure is the median over the repeats, the repeats' range beside it (same machine, same kit).
 """
 import glob
+import importlib.util
 import json
 import os
 import statistics
 import sys
+
+# The kit's summary holds the noise correction; runs summarized before it had it get it here.
+_spec = importlib.util.spec_from_file_location(
+    "device_bench_summary", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts",
+                                         "device-bench-summary.py"))
+device_bench_summary = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(device_bench_summary)
+
+
+def with_noise_correction(run):
+    """Fills noise_corrected_over_path_tracer where a run's summary predates it (every such run of the
+    kit used 1024-spp references)."""
+    rows = run.get("equal_time", [])
+    tracers = {(r["scene"], r.get("reference")): r for r in rows if r.get("mode") == "reference"}
+    for r in rows:
+        if "noise_corrected_over_path_tracer" not in r:
+            r["noise_corrected_over_path_tracer"] = device_bench_summary.noise_corrected(
+                r, tracers.get((r["scene"], r.get("reference"))), r.get("reference_spp", 1024))
+    return run
 
 
 def med(values, spec):
@@ -30,7 +50,7 @@ def matching(runs, section, key, row):
 
 
 def main(d):
-    runs = [json.load(open(f)) for f in sorted(glob.glob(os.path.join(d, "summary*.json")))]
+    runs = [with_noise_correction(json.load(open(f))) for f in sorted(glob.glob(os.path.join(d, "summary*.json")))]
     if not runs:
         sys.exit(f"{d}: no summary*.json")
     first = runs[0]
@@ -58,11 +78,13 @@ def main(d):
                   f"{med([s['build_ms_median'] for s in same], '.3f')} | {med([s['traverse_ms_median'] for s in same], '.3f')} | "
                   f"{med([s['ratio_to_floor'] for s in same], '.2f')} |")
     md += ["", "## Equal time against the path tracer (equal-time.toml of each run: seconds, size, seed)", "",
-           "| scene | mode | iterations | relMSE | relMSE / path tracer | image mean / reference (g) |", "|---|---|---|---|---|---|"]
+           "| scene | mode | iterations | relMSE | relMSE / path tracer | noise-corrected | image mean / reference (g) |",
+           "|---|---|---|---|---|---|---|"]
     for row in first["equal_time"]:
         same = matching(runs, "equal_time", lambda r: (r["scene"], r["label"]), row)
         md.append(f"| {row['scene']} | {row['label']} | {med([s['iterations'] for s in same], '.0f')} | "
                   f"{med([s['relmse'] for s in same], '.3g')} | {med([s['relmse_over_path_tracer'] for s in same], '.3g')} | "
+                  f"{med([s['noise_corrected_over_path_tracer'] for s in same], '.3g')} | "
                   f"{med([s['mean_ratio'][1] if s['mean_ratio'] else None for s in same], '.4f')} |")
     if first.get("texels"):
         md += ["", "## The atlas in texel space (point-lit Cornell box; seconds and relMSE)", "",

@@ -43,6 +43,12 @@ grep -qE "^\| atlas \| 8 directions \| [0-9.]+ \| [0-9.e+-]+ \|" "$md" || fail "
 grep -qE "^\| baker \| 4 spp \|" "$md" || fail "no texel-space row for the baker"
 /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['passes'] and j['bundles'] and j['equal_time']" \
     "$out/bench/summary.json" || fail "summary.json incomplete"
+# The noise correction reads the quick run's 16-spp references (not the full runs' 1024) and rates
+# every row against its own path tracer.
+/usr/bin/python3 -c "import json,sys; e=json.load(open(sys.argv[1]))['equal_time']
+assert all(r['reference_spp'] == 16 for r in e), [r['reference_spp'] for r in e]
+assert all(r['noise_corrected_over_path_tracer'] is not None for r in e), e" \
+    "$out/bench/summary.json" || fail "summary.json: noise correction missing or at the wrong spp"
 # --only runs the steps named and no other.
 "$kit/scripts/device-bench.sh" "$out/only" --quick --only texels >"$out/only.log" 2>&1 || fail "device-bench.sh --only texels failed"
 [[ $(cat "$out/only/steps.txt") == "texels cornell-point ok" ]] || fail "--only texels ran: $(tr '\n' ';' <"$out/only/steps.txt")"
