@@ -121,7 +121,7 @@
 //                                         into the direct atlas (auto: where the settings allow it)
 //   shot_samples       one                first shot: one light_samples point per texel and direction,
 //                                         drawn by its area (all: the whole grid, light_samples^2 x the cost)
-//   emitter_points     16      points     first shot: on the emitters per direction
+//   emitter_points     4       points     first shot: on the emitters per direction
 //   emitter_shadow_resolution 256 texels  first shot: side of each point's shadow cube face
 //   environment_shots  4       directions first shot: toward the environment per direction, by its
 //                                         importance, a depth map each (0: the list ends carry it)

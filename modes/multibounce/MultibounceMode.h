@@ -46,8 +46,8 @@
 // at each splat corner, stored per point as the UV at the centre and its world-space gradient).
 //
 // Parameters (`bundlelab modes`):
-//   bundle_count       64      bundles       resident bundles per iteration (K)
-//   paths_per_pixel    4       paths         camera paths per pixel through each iteration's bundles
+//   bundle_count       32      bundles       resident bundles per iteration (K)
+//   paths_per_pixel    8       paths         camera paths per pixel through each iteration's bundles
 //   bundle_resolution  128     pixels        side of each bundle
 //   directions         halton                halton or random directions on the sphere
 //   max_segments       64      segments      at most this many per path (1 emitters, 2 direct light)
@@ -64,7 +64,7 @@
 //                                            hits and escapes, emitter points and environment directions,
 //                                            balance heuristic), bundles (hits and escapes alone, as
 //                                            [TO12]), points (points and directions alone)
-//   emitter_points     16      points        on the emitters per iteration, by power (gpu/EmitterPointPass.h)
+//   emitter_points     4       points        on the emitters per iteration, by power (gpu/EmitterPointPass.h)
 //   emitter_shadow_resolution 256 texels     side of each emitter point's shadow cube face
 //   environment_shots  4       directions    toward the environment per iteration, by its importance, a
 //                                            depth map each (bundle/EnvironmentShadowPass.h; 0: escapes alone)

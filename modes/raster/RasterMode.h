@@ -19,7 +19,7 @@
 //
 // Parameters (`bundlelab modes`):
 //   shadow_resolution  1024  texels   side of each shadow cube face
-//   emitter_points     16    points   on the area emitters per iteration (0: area lights left out)
+//   emitter_points     4     points   on the area emitters per iteration (0: area lights left out)
 //   emitter_shadow_resolution 256 texels side of each emitter point's shadow cube face
 //   environment_shots  4     directions toward the environment per iteration (0: it lights nothing)
 //   environment_shadow_resolution 512 texels side of each direction's depth map

@@ -19,7 +19,7 @@ def test_modes_list_their_parameters():
     modes = {m["name"]: m for m in bundlelab.modes()}
     assert {"reference", "raster", "multibounce", "bidir", "atlas", "skylight"} <= set(modes)
     params = {p["name"]: p for p in modes["multibounce"]["parameters"]}
-    assert params["bundle_count"]["default"] == 64
+    assert params["bundle_count"]["default"] == 32
     assert modes["reference"]["needs_gpu"] is False
 
 
