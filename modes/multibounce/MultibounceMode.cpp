@@ -39,8 +39,8 @@ constexpr std::uint64_t kInitialNodesPerPixel = 2;
 
 std::vector<ParamSpec> MultibounceMode::parameters() {
     // K = 32 with 8 paths a pixel: the builds are most of an iteration at K = 64 with 4, and an
-    // iteration's variance goes about as 1/K + 1/paths; K = 16 with 16 paths is lower still on
-    // diffuse scenes but leaves the glossy box to a heavy tail (README, `bundle_count`).
+    // iteration's variance goes about as 1/K + 1/paths; K = 16 with 16 paths is a little lower
+    // still on diffuse scenes, 32 the middle with twice its directions (README, `bundle_count`).
     std::vector<ParamSpec> params{
         {kBundleCount, std::int64_t{32}, "bundles", "resident omnidirectional bundles per iteration (K); paths pick one per bounce",
          1, 4096, {}},
