@@ -100,8 +100,9 @@ def reference_spp(results):
     """The spp of the runner's references: [reference] spp in the results' experiment.toml (1024, the
     kit's full runs, where it cannot be read)."""
     text = read(os.path.join(results, "experiment.toml"))
-    section = text[text.find("[reference]"):] if "[reference]" in text else ""
-    found = re.search(r"^\s*spp\s*=\s*(\d+)", section, re.M)
+    # The [reference] table alone: up to the next table header.
+    section = re.search(r"^\[reference\][^\n]*\n((?:(?!\s*\[).*\n?)*)", text, re.M)
+    found = re.search(r"^\s*spp\s*=\s*(\d+)", section.group(1), re.M) if section else None
     return int(found.group(1)) if found else 1024
 
 
