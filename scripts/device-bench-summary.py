@@ -7,8 +7,9 @@ failed (a render or benchmark exited non-zero); steps skipped for the budget are
 import csv
 import json
 import os
-import re
 import sys
+
+from reference_noise import noise_corrected, reference_spp
 
 
 def read(path, default=""):
@@ -96,27 +97,17 @@ def bundles(out):
     return rows
 
 
-def reference_spp(results):
-    """The spp of the runner's references: [reference] spp in the results' experiment.toml (1024, the
-    kit's full runs, where it cannot be read)."""
-    text = read(os.path.join(results, "experiment.toml"))
-    # The [reference] table alone: up to the next table header.
-    section = re.search(r"^\[reference\][^\n]*\n((?:(?!\s*\[).*\n?)*)", text, re.M)
-    found = re.search(r"^\s*spp\s*=\s*(\d+)", section.group(1), re.M) if section else None
-    return int(found.group(1)) if found else 1024
-
-
-def noise_corrected(row, path_tracer, spp):
-    """A row's relMSE less its reference's noise over the path tracer's own relMSE, predicted from the
-    same noise as noise * spp / the path tracer's samples (the reference is the path tracer at spp:
-    the same estimator, its variance falling as 1/samples). Measured against a Monte Carlo reference
-    a relMSE is in expectation the method's own plus the reference's noise, which at these sizes is
-    most of the path tracer's measured relMSE. None where a figure is missing."""
-    noise = row.get("reference_noise_relmse")
-    if row.get("relmse") is None or noise is None or path_tracer is None or not path_tracer["iterations"]:
-        return None
-    predicted = path_tracer["reference_noise_relmse"] * spp / path_tracer["iterations"]
-    return (row["relmse"] - noise) / predicted if predicted > 0 else None
+def with_noise_correction(rows):
+    """Each equal-time row's noise-corrected ratio against the path tracer judged by the same
+    reference (scripts/reference_noise.py); rows of summaries written before it had it carry no
+    reference_spp: every such run of the kit used 1024-spp references."""
+    tracers = {(r["scene"], r.get("reference")): r for r in rows if r.get("mode") == "reference"}
+    for r in rows:
+        tracer = tracers.get((r["scene"], r.get("reference")))
+        r["noise_corrected_over_path_tracer"] = noise_corrected(
+            r.get("relmse"), r.get("reference_noise_relmse"), tracer and tracer.get("reference_noise_relmse"),
+            r["reference_spp"] if "reference_spp" in r else 1024, tracer and tracer.get("iterations")) if tracer else None
+    return rows
 
 
 def equal_time(out):
@@ -124,7 +115,6 @@ def equal_time(out):
     if not os.path.exists(path):
         return []
     rows = list(csv.DictReader(open(path)))
-    spp = reference_spp(os.path.join(out, "equal-time"))
     # A mode is compared with the path tracer judged against the same reference image (bidir's
     # reference keeps paths of up to four segments, like bidir).
     def reference_of(r):
@@ -138,13 +128,12 @@ def equal_time(out):
             "wall_seconds": float(r["wall_seconds"]), "setup_seconds": float(r["setup_seconds"]),
             "gpu_ms": float(r["gpu_ms"]) if r["gpu_ms"] else None, "relmse": rel,
             "relmse_over_path_tracer": rel / pt[reference_of(r)] if rel is not None and pt.get(reference_of(r)) else None,
-            "reference": reference_of(r)[1], "reference_spp": spp,
+            "reference": reference_of(r)[1],
+            "reference_spp": reference_spp(os.path.join(out, "equal-time", r["dir"])),
             "mean_ratio": [float(r[k]) for k in ("mean_ratio_r", "mean_ratio_g", "mean_ratio_b") if r[k]],
             "reference_noise_relmse": float(r["reference_noise_relmse"]) if r["reference_noise_relmse"] else None,
         })
-    tracers = {(x["scene"], x["reference"]): x for x in result if x["mode"] == "reference"}
-    for x in result:
-        x["noise_corrected_over_path_tracer"] = noise_corrected(x, tracers.get((x["scene"], x["reference"])), spp)
+    with_noise_correction(result)
     return result
 
 

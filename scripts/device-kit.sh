@@ -36,7 +36,7 @@ ldd "$binary" | awk '$2 == "=>" && $3 ~ /^\// {print $1, $3}' | while read -r na
         *) cp -L "$path" "$kit/lib/$name" ;;
     esac
 done
-cp "$root/scripts/device-bench.sh" "$root/scripts/device-bench-summary.py" "$kit/scripts/"
+cp "$root/scripts/device-bench.sh" "$root/scripts/device-bench-summary.py" "$root/scripts/reference_noise.py" "$kit/scripts/"
 cp -r "$root/data" "$kit/"
 cp -r "$shared/sponza-dabrovic" "$stage/bundlelab-kit/shared/data/"
 cp "$shared/bunny/mcguire/bunny.obj" "$stage/bundlelab-kit/shared/data/bunny/mcguire/"

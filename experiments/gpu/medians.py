@@ -12,22 +12,17 @@ import statistics
 import sys
 
 # The kit's summary holds the noise correction; runs summarized before it had it get it here.
-_spec = importlib.util.spec_from_file_location(
-    "device_bench_summary", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts",
-                                         "device-bench-summary.py"))
+_scripts = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts")
+sys.path.insert(0, _scripts)  # its own import of reference_noise
+_spec = importlib.util.spec_from_file_location("device_bench_summary", os.path.join(_scripts, "device-bench-summary.py"))
 device_bench_summary = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(device_bench_summary)
 
 
 def with_noise_correction(run):
-    """Fills noise_corrected_over_path_tracer where a run's summary predates it (every such run of the
-    kit used 1024-spp references)."""
-    rows = run.get("equal_time", [])
-    tracers = {(r["scene"], r.get("reference")): r for r in rows if r.get("mode") == "reference"}
-    for r in rows:
-        if "noise_corrected_over_path_tracer" not in r:
-            r["noise_corrected_over_path_tracer"] = device_bench_summary.noise_corrected(
-                r, tracers.get((r["scene"], r.get("reference"))), r.get("reference_spp", 1024))
+    """Fills noise_corrected_over_path_tracer where a run's summary predates it."""
+    if any("noise_corrected_over_path_tracer" not in r for r in run.get("equal_time", [])):
+        device_bench_summary.with_noise_correction(run["equal_time"])
     return run
 
 

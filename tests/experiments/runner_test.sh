@@ -101,22 +101,37 @@ suite_summary)
     # path tracer's relMSE = the reference's noise 1e-4 + its own 1e-4 * 1024 / 2048 spp; atlas
     # 1.1e-3, of which 1e-3 its own. Measured ratio 1.1e-3 / 1.5e-4 = 7.33x; noise-corrected
     # 1e-3 / 5e-5 = 20x (22x if the noise were not taken off, 6.67x against the path tracer's
-    # measured relMSE less the noise read as 1.5e-4).
+    # measured relMSE less the noise read as 1.5e-4). Raster is judged against another reference
+    # (direct light, noise 1e-5, whose JSON says 4096 spp where the config says 1024), so against
+    # path-tracer-2 (its own 1e-5 * 4096 / 4096 = 1e-5, measured 2e-5): 3.5e-5 / 1e-5 = 3.5x,
+    # 4.5e-5 / 2e-5 = 2.25x measured (14x if the config's 1024 were read; against the full-GI
+    # path tracer 0.7x).
     r="$out/results"
-    mkdir -p "$r/tasks/pt" "$r/tasks/atlas"
+    mkdir -p "$r/tasks/pt" "$r/tasks/atlas" "$r/tasks/pt2" "$r/tasks/raster"
     printf '[reference]\nspp = 1024\n' >"$r/experiment.toml"
-    printf 'iteration,wall_seconds,relmse\n1,0.5,0.5\n2,1.0,0.05\n' | tee "$r/tasks/pt/metrics.csv" >"$r/tasks/atlas/metrics.csv"
+    for t in pt atlas pt2 raster; do
+        printf 'iteration,wall_seconds,relmse\n1,0.5,0.5\n2,1.0,0.05\n' >"$r/tasks/$t/metrics.csv"
+    done
+    for t in pt atlas; do echo "../../references/box-full.exr" >"$r/tasks/$t/reference.txt"; done
+    for t in pt2 raster; do echo "../../references/box-direct.exr" >"$r/tasks/$t/reference.txt"; done
+    mkdir -p "$r/references" && echo '{"scene": "box", "spp": 4096, "noise_relmse": 1e-5}' >"$r/references/box-direct.json"
     {
-        echo "scene,label,seed,iterations,wall_seconds,relmse,mean_ratio_r,mean_ratio_g,mean_ratio_b,reference_noise_relmse,dir"
-        echo "box,path-tracer,0,2048,10,1.5e-4,1,1,1,1e-4,tasks/pt"
-        echo "box,path-tracer,1,2048,10,1.5e-4,1,1,1,1e-4,tasks/pt"
-        echo "box,atlas,0,40,10,1.1e-3,1,1,1,1e-4,tasks/atlas"
-        echo "box,atlas,1,40,10,1.1e-3,1,1,1,1e-4,tasks/atlas"
+        echo "scene,mode,label,seed,iterations,wall_seconds,relmse,mean_ratio_r,mean_ratio_g,mean_ratio_b,reference_noise_relmse,dir"
+        echo "box,reference,path-tracer,0,2048,10,1.5e-4,1,1,1,1e-4,tasks/pt"
+        echo "box,reference,path-tracer,1,2048,10,1.5e-4,1,1,1,1e-4,tasks/pt"
+        echo "box,atlas,atlas,0,40,10,1.1e-3,1,1,1,1e-4,tasks/atlas"
+        echo "box,atlas,atlas,1,40,10,1.1e-3,1,1,1,1e-4,tasks/atlas"
+        echo "box,reference,path-tracer-2,0,4096,10,2e-5,1,1,1,1e-5,tasks/pt2"
+        echo "box,raster,raster,0,300,10,4.5e-5,1,1,1,1e-5,tasks/raster"
     } >"$r/results.csv"
     /usr/bin/python3 experiments/suite/summary.py "$r" >"$out/report.md" || fail "summary.py failed"
-    grep -q '^| box | atlas | 40 | 0.0011 | 1 | — | — | .* | 7.33x | 20x |$' "$out/report.md" ||
+    grep -q '^| box | atlas | 40 | 0.0011 | 1 | — | — | .* | path-tracer | 7.33x | 20x |$' "$out/report.md" ||
         { cat "$out/report.md"; fail "atlas row: expected measured 7.33x, noise-corrected 20x"; }
-    grep -q '^| box | 0.0001 | 5e-05 | 5e-05 |$' "$out/report.md" ||
+    grep -q '^| box | raster | 300 | 4.5e-05 | 1 | — | — | .* | path-tracer-2 | 2.25x | 3.5x |$' "$out/report.md" ||
+        { cat "$out/report.md"; fail "raster row: expected 2.25x and 3.5x against path-tracer-2 (4096 spp from its JSON)"; }
+    grep -q '^| box | path-tracer-2 | 1e-05 | 1e-05 | 1e-05 |$' "$out/report.md" ||
+        { cat "$out/report.md"; fail "path-tracer-2 check row: noise, predicted and measured 1e-5"; }
+    grep -q '^| box | path-tracer | 0.0001 | 5e-05 | 5e-05 |$' "$out/report.md" ||
         { cat "$out/report.md"; fail "path tracer check row: noise 1e-4, predicted and measured 5e-5"; }
     ;;
 *)
