@@ -183,6 +183,7 @@ if ((quick)); then
 name = \"cornell-point\"
 file = \"$cornell\"
 resolution = [$resolution, $resolution]"
+    gi_scenes='["cornell-point"]' direct_scenes='["cornell-point"]' sky_mode=""
 else
     seconds=6 spp=1024 resolution=128 mb="" bd="" at=""
     # On the area-lit box: multibounce's emitters by bundle hits alone ([TO12]) beside its default MIS
@@ -207,7 +208,20 @@ resolution = [$resolution, $resolution]
 [[scene]]
 name = \"cornell-area\"
 file = \"$cornell_area\"
+resolution = [$resolution, $resolution]
+
+[[scene]]
+name = \"bunny-envmap\"
+file = \"$bunny_env\"
 resolution = [$resolution, $resolution]"
+    # The full-GI modes on the Cornell boxes; direct light (raster, skylight under the probe) against
+    # the path tracer cut to 2 segments.
+    gi_scenes='["cornell-point", "cornell-area"]' direct_scenes='["cornell-point", "cornell-area", "bunny-envmap"]'
+    sky_mode="[[mode]]
+mode      = \"skylight\"
+scenes    = [\"bunny-envmap\"]
+reference = { max_segments = 2 }
+"
 fi
 cat >"$out/equal-time.toml" <<EOF
 # Written by scripts/device-bench.sh: every mode at equal wall time against the path tracer.
@@ -224,11 +238,13 @@ settings = { max_segments = 64 }
 $scenes
 
 [[mode]]
-mode  = "reference"
-label = "path-tracer"
+mode   = "reference"
+label  = "path-tracer"
+scenes = $gi_scenes
 
 [[mode]]
 mode     = "multibounce"
+scenes   = $gi_scenes
 settings = { $mb }
 
 $area_variants
@@ -247,7 +263,21 @@ reference = { max_segments = 4 }   # bidir computes paths of up to two bounces
 
 [[mode]]
 mode     = "atlas"
+scenes   = $gi_scenes
 settings = { $at }
+
+[[mode]]
+mode      = "reference"
+label     = "path-tracer-2"
+scenes    = $direct_scenes
+settings  = { max_segments = 2 }
+reference = { max_segments = 2 }
+
+[[mode]]
+mode      = "raster"
+scenes    = $direct_scenes
+reference = { max_segments = 2 }   # raster computes direct light
+$sky_mode
 EOF
 left=$(remaining)
 if ! wanted equal-time; then

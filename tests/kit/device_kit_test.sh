@@ -35,7 +35,7 @@ for mode in raster bidir multibounce atlas skylight; do
     grep -qE "^\| $mode \| [a-z-]+\.toml \| 64×36 \| 1 \| [0-9.]+ \|" "$md" || fail "no per-pass row for $mode"
 done
 [[ $(grep -cE '^\| cornell\.toml \| 32 \| (raster|compute) \|' "$md") == 4 ]] || fail "bundles: want 2 backends x 2 resolutions"
-for label in path-tracer multibounce bidir atlas; do
+for label in path-tracer multibounce bidir atlas path-tracer-2 raster; do
     grep -qE "^\| cornell-point \| $label \| [0-9]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.e+-]+ \| [0-9.e+-]+ \|" "$md" \
         || fail "no equal-time row for $label"
 done
