@@ -7,7 +7,9 @@
 #      compilation or the GPU's clock ramp (the first 1 + 2F iterations are a warm-up);
 #   2. bundle build + walk against the rasterization floor, both build backends, Sponza and the bunny;
 #   3. each mode against the path tracer at equal time on this machine's cores (the experiment runner;
-#      relMSE against a 1024-spp reference);
+#      relMSE against a 1024-spp reference; each mode against the path tracer judged by the same
+#      reference: full GI, or cut to 4 segments for bidir and 2 for raster and skylight; the
+#      summary also gives the ratios with the reference's own noise taken off);
 #   4. the atlas in texel space (bundlelab bench texels, point-lit Cornell box): its error over every
 #      texel against the path tracer baking the same texels, and per view count against the path tracer;
 # and writes OUTDIR/summary.md (one document of tables) and OUTDIR/summary.json. A step that would
