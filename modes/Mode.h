@@ -62,6 +62,11 @@ struct TradeSettings {
     bool fitVisible = false;             // frames fitted to the camera's visible points
     bool lobesByBundleDirections = false; // glossy lobes are met only by uniform bundle directions
     bool bundlesOnlyForEnvironment = false; // the mode builds bundles only for an environment's light
+    // What bundleKey sizes, as the check names it, and why the frames cover the whole scene when
+    // the mode cannot fit them to the visible points (no fitKey). Raster's environment depth maps
+    // answer visibility by the same rule as skylight's bundles (bundle/DepthMapVisibility.glsl).
+    std::string bundleWhat = "bundles";
+    std::string wholeSceneWhy = "this mode's frames cover the whole scene: its paths leave the visible points";
     // A setting that ends the mode's paths early (multibounce: bundle_count <= 8 cuts a path at
     // K + 2 segments with point and spot lights' direct light and emitter points, K + 1 where it
     // meets an emitter by a bundle alone or the sky): its key and value, the longest path kept from

@@ -477,7 +477,7 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
                                                    kBundleDirectionsPerPoint);
         if (e.exceeds()) {
             std::string line =
-                name + ": bundles of " + std::to_string(t.bundleResolution) + "^2 pixels" +
+                name + ": " + t.bundleWhat + " of " + std::to_string(t.bundleResolution) + "^2 pixels" +
                 (t.fitVisible ? " fitted to the visible points"
                               : " over the scene's bounding sphere") +
                 " misjudge the visibility of the points the camera sees by " + describe(e) +
@@ -513,8 +513,7 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
                       " does not bring it under";
             }
             if (t.fitKey.empty())
-                fix += " (this mode's frames cover the whole scene: its paths leave the visible "
-                       "points)";
+                fix += " (" + t.wholeSceneWhy + ")";
             out.push_back(line + fix);
         }
     }

@@ -209,6 +209,15 @@ ImageSet RasterMode::resolve() {
 
 PassTimes RasterMode::timings() const { return mGpu ? mGpu->timer.totals() : PassTimes{}; }
 
-TradeSettings RasterMode::trades() const { return tradeSettingsOf(mSettings, kShadowResolution, {}); }
+TradeSettings RasterMode::trades() const {
+    // The environment directions' depth maps (over the scene's bounding sphere) are checked as
+    // skylight's bundles are: the same visibility rule at their resolution.
+    const bool environmentMaps = mSettings.getInt(kEnvironmentShotsKey) > 0;
+    TradeSettings t = tradeSettingsOf(mSettings, kShadowResolution, environmentMaps ? kEnvironmentShadowResolutionKey : "");
+    t.bundlesOnlyForEnvironment = true;
+    t.bundleWhat = "environment depth maps";
+    t.wholeSceneWhy = "the maps cover the scene's bounding sphere: any surface may shadow a visible point";
+    return t;
+}
 
 } // namespace bl

@@ -111,6 +111,37 @@ TEST(SettingTrades, ModesWarnWithTheSettingThatFixesIt) {
     EXPECT_TRUE(settingTrades(*createMode("reference", {}), s).empty());
 }
 
+// Raster's environment directions answer visibility from depth maps over the scene's bounding
+// sphere by skylight's rule: the 5 cm box on the 8 m floor under a constant sky is misjudged at
+// 32^2 maps and said, naming the maps and their setting; fine maps, no environment light
+// (environment_shots = 0) or no sky say nothing about them. (Before this check raster read the
+// env-lit bunny 6 % dark without a word.)
+TEST(SettingTrades, RasterSaysWhenItsEnvironmentMapsAreTooCoarse) {
+    Scene s = boxOnPlane(0.05f);
+    s.lights.clear();
+    s.environment.present = true;
+    s.environment.radiance = glm::vec3(1.0f);
+    auto says = [&](const Scene& scene, std::vector<std::string> settings) {
+        settings.push_back("shadow_resolution=2048");
+        for (const std::string& w : settingTrades(*createMode("raster", settings), scene))
+            if (w.find("environment depth maps of") != std::string::npos) return w;
+        return std::string();
+    };
+    const std::string coarse = says(s, {"environment_shadow_resolution=32"});
+    EXPECT_NE(coarse.find("environment depth maps of 32^2 pixels over the scene's bounding sphere"), std::string::npos)
+        << coarse;
+    EXPECT_NE(coarse.find("environment_shadow_resolution="), std::string::npos) << coarse;
+    EXPECT_EQ(coarse.find("fit="), std::string::npos) << coarse; // raster has no fit to offer
+    EXPECT_EQ(says(s, {"environment_shadow_resolution=2048"}), "");
+    EXPECT_EQ(says(s, {"environment_shadow_resolution=32", "environment_shots=0"}), "");
+    Scene plane = test::pointLightOverPlane(0.5f, 1.0f, 1.0f, 64);
+    plane.lights.clear();
+    plane.environment = s.environment;
+    EXPECT_EQ(says(plane, {"environment_shadow_resolution=32"}), ""); // a plane has nothing to misjudge
+    Scene dark = boxOnPlane(0.05f);
+    EXPECT_EQ(says(dark, {"environment_shadow_resolution=32"}), ""); // no sky
+}
+
 // Skylight with glossy_control_variate = off meets a glossy lobe only through its uniform bundle
 // directions, once per e + 1 of them: a lobe past a long run's 1024 directions is said, with the
 // material; a broad one is not; with the default (on) each pixel samples the lobe: nothing to say.
