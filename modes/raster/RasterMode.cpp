@@ -216,7 +216,7 @@ TradeSettings RasterMode::trades() const {
     TradeSettings t = tradeSettingsOf(mSettings, kShadowResolution, environmentMaps ? kEnvironmentShadowResolutionKey : "");
     t.bundlesOnlyForEnvironment = true;
     t.bundleWhat = "environment depth maps";
-    t.wholeSceneWhy = "the maps cover the scene's bounding sphere: any surface may shadow a visible point";
+    t.wholeSceneWhy = "raster frames its maps over the scene's bounding sphere and has no fit setting yet";
     return t;
 }
 
