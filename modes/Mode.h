@@ -53,6 +53,12 @@ struct ImageSet {
 
 // The settings whose accuracy depends on the scene, for the checks of modes/SettingTrades.h
 // (what a mode trades, said before rendering). Empty keys: the mode has no such setting.
+// How a bundle check's replay answers visibility (SettingTrades.cpp, bundleVisibilityError):
+// ListAlongOwnPlane, a bundle's list with every fragment taken parallel to x's plane (skylight's
+// bundles); DepthMapNearestLight, a depth map's one surface nearest the light, with its facet's
+// plane (bundle/DepthMapVisibility.glsl: raster's environment maps, skylight's visibility = depth_map).
+enum class BundleRule { ListAlongOwnPlane, DepthMapNearestLight };
+
 struct TradeSettings {
     std::string shadowKey;               // shadow cubes of point and spot lights
     std::uint32_t shadowResolution = 0;
@@ -63,9 +69,10 @@ struct TradeSettings {
     bool lobesByBundleDirections = false; // glossy lobes are met only by uniform bundle directions
     bool bundlesOnlyForEnvironment = false; // the mode builds bundles only for an environment's light
     // What bundleKey sizes, as the check names it, and why the frames cover the whole scene when
-    // the mode cannot fit them to the visible points (no fitKey). Raster's environment depth maps
-    // answer visibility by the same rule as skylight's bundles (bundle/DepthMapVisibility.glsl).
+    // the mode cannot fit them to the visible points (no fitKey); bundleRule, how the check
+    // replays their visibility (raster's environment depth maps: DepthMapNearestLight).
     std::string bundleWhat = "bundles";
+    BundleRule bundleRule = BundleRule::ListAlongOwnPlane;
     std::string wholeSceneWhy = "this mode's frames cover the whole scene: its paths leave the visible points";
     // A setting that ends the mode's paths early (multibounce: bundle_count <= 8 cuts a path at
     // K + 2 segments with point and spot lights' direct light and emitter points, K + 1 where it

@@ -238,7 +238,7 @@ TradeError shadowCubeError(const EmbreeScene& rt, const std::vector<ViewPoint>& 
 
 TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPoint>& points,
                                  std::uint32_t resolution, bool fitVisible,
-                                 std::uint32_t directionsPerPoint) {
+                                 std::uint32_t directionsPerPoint, BundleRule rule) {
     const Bounds bounds = rt.scene().bounds();
     const glm::vec3 centre = bounds.center();
     const float radius = bounds.radius();
@@ -276,11 +276,14 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
                              std::numeric_limits<float>::infinity());
 
             // The pixel's centre ray through the whole sphere; depths measured from x's depth.
-            // Every fragment is taken parallel to x's plane, nothing skipped by identity:
+            // Lists: every fragment is taken parallel to x's plane, nothing skipped by identity:
             // skylight's rule exactly (its bundles carry no payload). Multibounce and bidir place
             // fragments by their payload's normals and skip x's triangle; atlas walks by face bits:
             // for them this is the same pixel-offset error measured with skylight's rule, an
-            // approximation.
+            // approximation. Depth maps: only the surface nearest the light along d, which hides x
+            // where it lies beyond both x's plane and its own facet's plane (the map's normal) as
+            // x's ray crosses them (blDepthMapCentreOccluded; the contact taps, which answer only
+            // where the centre shows nothing near x, are not replayed).
             const glm::vec3 centrePoint = v.position - e;
             const float back = glm::length(centrePoint - centre) + radius * 1.01f;
             const std::vector<EmbreeScene::RayHit> hits =
@@ -289,12 +292,18 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
             const float tangent =
                 std::min(std::sqrt(std::max(0.0f, 1.0f - c * c)) / c, kMaxOwnSurfaceTangent);
             const float epsilon = depthEpsilon / c + pixel * tangent / kSubpixelGrid;
+            const auto beyond = [&](const EmbreeScene::RayHit& h, const glm::vec3& plane) {
+                return dir * crossing(omega, h.t - back, e, plane) > epsilon;
+            };
             bool blocked = false;
-            for (const EmbreeScene::RayHit& h : hits) {
-                if (dir * crossing(omega, h.t - back, e, v.normal) > epsilon) {
-                    blocked = true;
-                    break;
+            if (rule == BundleRule::DepthMapNearestLight) {
+                if (!hits.empty()) {
+                    const EmbreeScene::RayHit& nearest = dir > 0.0f ? hits.back() : hits.front();
+                    blocked = beyond(nearest, v.normal) && beyond(nearest, nearest.geometricNormal);
                 }
+            } else {
+                blocked = std::any_of(hits.begin(), hits.end(),
+                                      [&](const EmbreeScene::RayHit& h) { return beyond(h, v.normal); });
             }
             acc.add(exact ? weight : 0.0, blocked ? 0.0 : weight);
         }
@@ -474,7 +483,7 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
 
     if (bundles) {
         const TradeError e = bundleVisibilityError(rt, points, t.bundleResolution, t.fitVisible,
-                                                   kBundleDirectionsPerPoint);
+                                                   kBundleDirectionsPerPoint, t.bundleRule);
         if (e.exceeds()) {
             std::string line =
                 name + ": " + t.bundleWhat + " of " + std::to_string(t.bundleResolution) + "^2 pixels" +
@@ -490,7 +499,7 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
                  r *= 2) {
                 if (canFit) {
                     const TradeError f =
-                        bundleVisibilityError(rt, points, r, true, kBundleDirectionsPerPoint);
+                        bundleVisibilityError(rt, points, r, true, kBundleDirectionsPerPoint, t.bundleRule);
                     if (f.within()) {
                         fix = "fix: " + t.fitKey + "=visible" +
                               (r != t.bundleResolution ? " " + t.bundleKey + "=" + std::to_string(r)
@@ -502,7 +511,7 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
                 if (r == t.bundleResolution)
                     continue;
                 const TradeError f =
-                    bundleVisibilityError(rt, points, r, t.fitVisible, kBundleDirectionsPerPoint);
+                    bundleVisibilityError(rt, points, r, t.fitVisible, kBundleDirectionsPerPoint, t.bundleRule);
                 if (f.within())
                     fix =
                         "fix: " + t.bundleKey + "=" + std::to_string(r) + " (" + describe(f) + ")";

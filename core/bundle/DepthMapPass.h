@@ -2,7 +2,8 @@
 // shadow map), keeping only the surface nearest to a light at +infinity along omega. A point can
 // use it for one direction only (omega), where a bundle answers omega and -omega for everyone:
 // the comparison [TO12] makes. The map (rgba32f: linear depth in world units, -inf where empty, and
-// the surface's shading normal, which the visibility test needs at creases) is in
+// the geometric normal of the surface's facet, whose plane the visibility test judges x's ray
+// against and finds creases with: bundle/DepthMapVisibility.glsl) is in
 // VK_IMAGE_LAYOUT_GENERAL after record(). With `layers` > 0 the image is a 2D array of that many
 // maps (one per direction: EnvironmentShadowPass), each record rendering one layer.
 #pragma once

@@ -211,11 +211,12 @@ PassTimes RasterMode::timings() const { return mGpu ? mGpu->timer.totals() : Pas
 
 TradeSettings RasterMode::trades() const {
     // The environment directions' depth maps (over the scene's bounding sphere) are checked as
-    // skylight's bundles are: the same visibility rule at their resolution.
+    // skylight's bundles are, at their resolution, with the depth maps' rule.
     const bool environmentMaps = mSettings.getInt(kEnvironmentShotsKey) > 0;
     TradeSettings t = tradeSettingsOf(mSettings, kShadowResolution, environmentMaps ? kEnvironmentShadowResolutionKey : "");
     t.bundlesOnlyForEnvironment = true;
     t.bundleWhat = "environment depth maps";
+    t.bundleRule = BundleRule::DepthMapNearestLight;
     t.wholeSceneWhy = "raster frames its maps over the scene's bounding sphere and has no fit setting yet";
     return t;
 }

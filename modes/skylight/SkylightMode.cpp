@@ -301,6 +301,10 @@ PassTimes SkylightMode::timings() const {
 TradeSettings SkylightMode::trades() const {
     TradeSettings t = tradeSettingsOf(mSettings, {}, kBundleResolution, kFit);
     t.lobesByBundleDirections = !mOptions.glossyControl; // else each pixel samples its lobe itself
+    if (mOptions.depthMapVisibility) {
+        t.bundleWhat = "depth maps";
+        t.bundleRule = BundleRule::DepthMapNearestLight;
+    }
     return t;
 }
 

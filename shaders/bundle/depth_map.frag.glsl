@@ -2,15 +2,22 @@
 #extension GL_GOOGLE_include_directive : require
 // Orthographic depth map along the bundle direction (a directional shadow map): the fragment's
 // linear depth, kept by the depth test as the largest, i.e. the surface nearest to a light at
-// +infinity along omega, and that surface's shading normal (either sign: a flat face's plane, on
-// smooth meshes close to it), which bundle/DepthMapVisibility.glsl needs to find creases. The
-// bundle's vertex shader provides both varyings.
+// +infinity along omega, and the plane of that surface's facet (its geometric normal, either
+// sign), which bundle/DepthMapVisibility.glsl judges x's ray against and finds creases with. The
+// facet's normal comes from the derivatives of the position relative to the frame's origin (exact
+// on a triangle, whose attributes the quad's helper lanes interpolate too; relative, so a scene
+// far from the origin keeps its digits); the interpolated shading normal only where those vanish.
+// A smooth mesh's shading normal is not its facet's plane: with it the bowl of
+// RasterScenes.EnvironmentLightsCurvedAndRoughMeshesAsTheReferenceDoes read 0.62 of the reference.
 layout(location = 0) in float inDepth;
 layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec3 inRelative;
 layout(location = 0) out vec4 outDepthNormal;
 
 void main() {
+    vec3 g = cross(dFdx(inRelative), dFdy(inRelative));
+    float gg = dot(g, g);
     float lengthSquared = dot(inNormal, inNormal);
-    vec3 n = lengthSquared > 1e-30 ? inNormal * inversesqrt(lengthSquared) : vec3(0.0);
+    vec3 n = gg > 1e-36 ? g * inversesqrt(gg) : lengthSquared > 1e-30 ? inNormal * inversesqrt(lengthSquared) : vec3(0.0);
     outDepthNormal = vec4(inDepth, n);
 }

@@ -13,6 +13,7 @@ layout(push_constant) uniform PushBlock { BundleDepthMapPush push; };
 
 layout(location = 0) out float outDepth;
 layout(location = 1) out vec3 outNormal;
+layout(location = 2) out vec3 outRelative; // world - frame.origin: the facet's plane, by derivatives
 
 void main() {
     vec3 world = (push.model * vec4(inPositionU.xyz, 1.0)).xyz;
@@ -20,5 +21,6 @@ void main() {
     vec4 clip = blBundleClipPosition(frame, world, depth);
     outDepth = depth;
     outNormal = mat3(push.model) * inNormalV.xyz;
+    outRelative = world - frame.origin;
     gl_Position = clip;
 }

@@ -2,7 +2,11 @@
 
 #include <shared/Camera.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <tuple>
 
 namespace bl::test {
 
@@ -24,6 +28,126 @@ Mesh makeSquare(float size, std::uint32_t material, glm::vec3 centre) {
                            centre.y, false, material);
     m.name = "square";
     return m;
+}
+
+Mesh makeBowl(int rings, int segments, std::uint32_t material) {
+    Mesh m;
+    m.name = "bowl";
+    for (int i = 0; i <= rings; ++i) {
+        const float theta = 0.5f * shader::kPi * (1.0f + float(i) / float(rings)); // from +y: equator to bottom
+        for (int j = 0; j < segments; ++j) {
+            const float phi = 2.0f * shader::kPi * float(j) / float(segments);
+            const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+            m.positions.push_back(n + glm::vec3(0.0f, 1.0f, 0.0f));
+            m.normals.push_back(n);
+        }
+    }
+    for (int i = 0; i < rings; ++i) {
+        for (int j = 0; j < segments; ++j) {
+            const auto at = [&](int r, int k) { return std::uint32_t(r * segments + (k % segments)); };
+            m.triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
+            m.triangles.push_back({at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)});
+        }
+    }
+    m.material = material;
+    return m;
+}
+
+double largestNormalDeviation(const Mesh& mesh) {
+    double largest = 0.0;
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::vec3 g = glm::normalize(glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
+                                                      mesh.positions[t.z] - mesh.positions[t.x]));
+        for (int k = 0; k < 3; ++k) {
+            const float c = std::abs(glm::dot(g, glm::normalize(mesh.normals[t[k]])));
+            largest = std::max(largest, std::acos(double(std::min(c, 1.0f))));
+        }
+    }
+    return largest;
+}
+
+namespace {
+// Each edge (its end points, ordered) with the unit normals of the triangles that have it.
+std::map<std::array<float, 6>, std::vector<glm::vec3>> edgeNormals(const Mesh& mesh) {
+    std::map<std::array<float, 6>, std::vector<glm::vec3>> edges;
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::vec3 p[3] = {mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]};
+        const glm::vec3 n = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
+        for (int e = 0; e < 3; ++e) {
+            glm::vec3 a = p[e], b = p[(e + 1) % 3];
+            if (std::tie(b.x, b.y, b.z) < std::tie(a.x, a.y, a.z)) std::swap(a, b);
+            edges[{a.x, a.y, a.z, b.x, b.y, b.z}].push_back(n);
+        }
+    }
+    return edges;
+}
+} // namespace
+
+double largestDihedral(const Mesh& mesh) {
+    double largest = 0.0;
+    for (const auto& [edge, normals] : edgeNormals(mesh)) {
+        if (normals.size() == 2) {
+            largest = std::max(largest, std::acos(double(std::clamp(std::abs(glm::dot(normals[0], normals[1])), 0.0f, 1.0f))));
+        }
+    }
+    return largest;
+}
+
+double borderLength(const Mesh& mesh) {
+    double length = 0.0;
+    for (const auto& [e, normals] : edgeNormals(mesh)) {
+        if (normals.size() == 1) length += glm::length(glm::vec3(e[0], e[1], e[2]) - glm::vec3(e[3], e[4], e[5]));
+    }
+    return length;
+}
+
+Scene bowlUnderSky(int rings, int segments, int resolution) {
+    Scene s;
+    Material m;
+    m.name = "white";
+    m.albedo = glm::vec3(0.8f);
+    s.materials.push_back(m);
+    s.meshes.push_back(makeBowl(rings, segments, 0));
+    s.environment.present = true;
+    s.environment.radiance = glm::vec3(1.0f);
+    s.camera.pose.position = glm::vec3(0.0f, 3.5f, 0.8f);
+    s.camera.pose.target = glm::vec3(0.0f, 0.6f, 0.0f);
+    s.camera.pose.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    s.camera.fovDegrees = 50.0f;
+    s.camera.resolution = glm::ivec2(resolution);
+    return s;
+}
+
+Scene bumpsUnderSky(int cells, float amplitude, int resolution) {
+    Scene s = bowlUnderSky(1, 3, resolution);
+    Mesh& m = s.meshes[0];
+    m = Mesh{};
+    m.name = "bumps";
+    const auto height = [&](int i, int j) {
+        std::uint32_t h = std::uint32_t(i) * 73856093u ^ std::uint32_t(j) * 19349663u;
+        h = (h ^ (h >> 16)) * 0x45d9f3bu;
+        h = (h ^ (h >> 16)) * 0x45d9f3bu;
+        h ^= h >> 16;
+        return amplitude * (2.0f * float(h & 0xffffu) / 65535.0f - 1.0f);
+    };
+    const auto corner = [&](int i, int j) {
+        return glm::vec3(-1.0f + 2.0f * float(i) / float(cells), height(i, j), -1.0f + 2.0f * float(j) / float(cells));
+    };
+    for (int i = 0; i < cells; ++i) {
+        for (int j = 0; j < cells; ++j) {
+            const glm::vec3 a = corner(i, j), b = corner(i + 1, j), c = corner(i, j + 1), d = corner(i + 1, j + 1);
+            for (const auto& [p, q, r] : {std::tuple{a, c, b}, std::tuple{b, c, d}}) {
+                const std::uint32_t first = std::uint32_t(m.positions.size());
+                const glm::vec3 n = glm::normalize(glm::cross(q - p, r - p));
+                m.positions.insert(m.positions.end(), {p, q, r});
+                m.normals.insert(m.normals.end(), {n, n, n});
+                m.triangles.push_back({first, first + 1, first + 2});
+            }
+        }
+    }
+    s.camera.pose.position = glm::vec3(0.0f, 2.5f, 1.5f);
+    s.camera.pose.target = glm::vec3(0.0f);
+    return s;
 }
 
 Scene pointLightOverPlane(float albedo, float intensity, float h, int resolution) {

@@ -10,6 +10,27 @@ Mesh makeSquare(float size, std::uint32_t material, glm::vec3 centre = glm::vec3
 // A rectangle in the plane y = `height` spanning [x0,x1] x [z0,z1], facing down (-y) if `facingDown`.
 Mesh makeRectangle(glm::vec2 lo, glm::vec2 hi, float height, bool facingDown, std::uint32_t material);
 
+// The lower half of a sphere of radius 1 centred at (0, 1, 0) (a bowl open at the top, resting on
+// the origin), `rings` x `segments` facets with the sphere's smooth normals (outward).
+Mesh makeBowl(int rings, int segments, std::uint32_t material);
+// The largest angle (radians) between a triangle's geometric normal and one of its vertex normals.
+double largestNormalDeviation(const Mesh& mesh);
+// Over the edges two triangles share (matched by position): the largest angle between their
+// planes (radians). And the length of the edges only one triangle has (the mesh's borders).
+double largestDihedral(const Mesh& mesh);
+double borderLength(const Mesh& mesh);
+// makeBowl(rings, segments) of albedo 0.8 under a constant white sky, seen from above into it
+// (every inner point concave: its neighbours rise in front of its plane). For a true hemisphere
+// each inner point sees the sky through the opening with form factor 1/2 (a point on a sphere's
+// inside sees any part of it in proportion to area), so its direct radiance is 0.4; the outside, 0.8.
+Scene bowlUnderSky(int rings, int segments, int resolution);
+
+// A 2 x 2 square about the origin in y = 0 made a heightfield of `cells` x `cells` quads whose
+// corners are raised by up to +-`amplitude` (a fixed hash: the same mesh every run), flat shaded
+// (each triangle its own vertices, normals its geometric one), albedo 0.8, under a constant white
+// sky, seen obliquely: concave creases between facets everywhere, no normal but the facets'.
+Scene bumpsUnderSky(int cells, float amplitude, int resolution);
+
 // A Lambertian plane of albedo `albedo` lit by a point light of intensity `intensity` at height h
 // above the origin, seen obliquely by a camera of `resolution`.
 Scene pointLightOverPlane(float albedo, float intensity, float h, int resolution);
