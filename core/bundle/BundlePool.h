@@ -34,7 +34,7 @@ namespace bl {
 
 enum class BundlePayload {
     None, // depth + face only (visibility)
-    Hit,  // + normal, material, texture UV, triangle or point id, barycentrics (BundleHit)
+    Hit,  // + normal, material, texture UV, triangle or point id, barycentrics, facet plane (BundleHit)
 };
 
 // What a bundle is built from: the scene's triangles at a time, or point splats in a device buffer

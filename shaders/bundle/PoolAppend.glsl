@@ -121,10 +121,12 @@ void main() {
         BundleHit hit;
 #ifdef BL_SPLATS
         hit.normal = blPackOctahedral(planeNormal);
+        hit.plane = hit.normal;
         hit.material = (splat.material & kBundleHitMaterialMask) | kBundleHitSplat;
         hit.uv = vec2(0.0);
         hit.id = inSplat;
         hit.barycentric = 0u;
+        hit.pad = 0u;
 #else
         // Barycentrics of the ray's hit point, from the triangle's corners in world space.
         uint first = 3u * triangle;
@@ -137,12 +139,15 @@ void main() {
         vec2 b = blTriangleBarycentrics(pixelRay(frame) + depth * frame.direction - p0, e1, e2);
         float b0 = 1.0 - b.x - b.y;
         vec3 shading = b0 * v0.normalV.xyz + b.x * v1.normalV.xyz + b.y * v2.normalV.xyz;
-        hit.normal = blPackOctahedral(safeNormalize(mat3(push.model) * shading, safeNormalize(planeNormal, -frame.direction)));
+        vec3 facet = safeNormalize(planeNormal, -frame.direction);
+        hit.normal = blPackOctahedral(safeNormalize(mat3(push.model) * shading, facet));
+        hit.plane = blPackOctahedral(facet);
         hit.material = push.material & kBundleHitMaterialMask;
         hit.uv = b0 * vec2(v0.positionU.w, v0.normalV.w) + b.x * vec2(v1.positionU.w, v1.normalV.w) +
                  b.y * vec2(v2.positionU.w, v2.normalV.w);
         hit.id = triangle;
         hit.barycentric = packUnorm2x16(b);
+        hit.pad = 0u;
 #endif
         BundleHitPayload(push.payloadAddress).hits[index] = hit;
     }

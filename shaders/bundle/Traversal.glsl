@@ -79,8 +79,9 @@ uint blBundleSortedNearest(BundleNodes nodes, uint head, float d, float dir, flo
 // fragment's plane (through its centre-ray point, normal m), and ordered by that depth: x's own
 // plane crosses at x's depth whatever its winding, the far face of a thin wall behind x, the
 // other wall of a corner whose plane the centre ray met beyond x's polygon behind x as well; a
-// fragment counts from blBundleSurfaceEpsilon past x on. m is the fragment's shading normal from
-// the hit payload (a flat face's plane; on smooth meshes close to it), or, without a payload,
+// fragment counts from blBundleSurfaceEpsilon past x on. m is the normal of the fragment's facet
+// from the hit payload (BundleHit::plane; its shading normal is not its plane on smooth meshes),
+// or, without a payload,
 // x's own normal n (every fragment taken parallel to x's plane: x's surface, coincident faces and
 // thin walls still right, a corner's other wall seen as the centre ray meets it).
 
@@ -151,7 +152,7 @@ uint blBundleSurfaceNearest(BundleNodes nodes, uint head, BundleHitPayload hits,
         bool ahead = true;
         if (payload) {
             BundleHit hit = hits.hits[i];
-            m = blUnpackOctahedral(hit.normal);
+            m = blUnpackOctahedral(hit.plane);
             mine = hit.id == own;
             // A plane from the payload crosses x's ray ahead of x also where its fragment lies
             // behind x's plane: the other face of a convex edge, sampled just past the edge, whose
@@ -276,7 +277,7 @@ uint blBundleSurfaceNearestAcrossCreases(BundleNodes nodes, BundleHeads heads, B
     bool found = best != kBundleNil;
     float bestDistance = found ? dir * (crossing - depth) : 3.0e38;
     vec3 hitPoint = found ? x + bestDistance * d : x;
-    vec3 hitNormal = found ? blUnpackOctahedral(hits.hits[best].normal) : n;
+    vec3 hitNormal = found ? blUnpackOctahedral(hits.hits[best].plane) : n;
     hitNormal = dot(hitNormal, d) > 0.0 ? -hitNormal : hitNormal; // toward x's side
     float hitCosine = abs(dot(hitNormal, frame.direction));
     float hitEpsilon = blBundleSurfaceEpsilon(frame, hitCosine) * hitCosine;
@@ -293,7 +294,7 @@ uint blBundleSurfaceNearestAcrossCreases(BundleNodes nodes, BundleHeads heads, B
             BundleNode node = nodes.nodes[i];
             BundleHit hit = hits.hits[i];
             vec3 point = ray + node.depth * frame.direction;
-            vec3 m = blUnpackOctahedral(hit.normal);
+            vec3 m = blUnpackOctahedral(hit.plane);
             bool usable = hit.id != own && abs(dot(m, frame.direction)) * kBundleMaxOwnSurfaceTangent >= 1.0;
             float distance = usable ? blBundleContactAhead(point, m, x, lit, abs(cosine), d, epsilon) : -1.0;
             i = node.next & kBundleIndexMask;

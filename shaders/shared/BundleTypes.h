@@ -56,8 +56,14 @@ struct BundleHit {
     vec2 uv;          // material texture coordinates at the pixel's ray (float: tiled UVs stay exact)
     uint id;          // global triangle index (GpuScene order), or the point index of a splat
     uint barycentric; // 2 x 16-bit unorm (b1, b2) of the ray's hit in the triangle; 0 for splats
+    uint plane;       // octahedral normal of the fragment's facet (a splat's plane): where the walks
+                      // place it (bundle/Traversal.glsl). A smooth mesh's shading normal is not its
+                      // facet's plane: placed by it, a bowl's neighbouring facets rose in front of
+                      // the point leaving them, and multibounce's first bounce inside a bowl read
+                      // 0.74 of the reference (1.01 by the facets' planes).
+    uint pad;
 };
-BL_STATIC_ASSERT(sizeof(BundleHit) == 24, "BundleHit layout");
+BL_STATIC_ASSERT(sizeof(BundleHit) == 32, "BundleHit layout");
 
 BL_CONST uint kBundleHitMaterialMask = 0x00ffffffu;
 BL_CONST uint kBundleHitSplat = 0x01000000u; // the fragment is a point splat: `id` is a point index

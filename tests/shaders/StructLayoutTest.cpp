@@ -57,7 +57,8 @@ TEST(StructLayout, BundleStructsMatchStd430) {
     EXPECT_EQ(offsetof(BundleHit, uv), 8u);
     EXPECT_EQ(offsetof(BundleHit, id), 16u);
     EXPECT_EQ(offsetof(BundleHit, barycentric), 20u);
-    EXPECT_EQ(sizeof(BundleHit), 24u);
+    EXPECT_EQ(offsetof(BundleHit, plane), 24u);
+    EXPECT_EQ(sizeof(BundleHit), 32u);
     EXPECT_EQ(offsetof(BundleSplat, radius), 12u);
     EXPECT_EQ(offsetof(BundleSplat, normal), 16u);
     EXPECT_EQ(offsetof(BundleSplat, material), 28u);
