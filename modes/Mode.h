@@ -73,6 +73,9 @@ struct TradeSettings {
     // replays their visibility (raster's environment depth maps: DepthMapNearestLight).
     std::string bundleWhat = "bundles";
     BundleRule bundleRule = BundleRule::ListAlongOwnPlane;
+    // The setting that answers visibility by depth maps instead (skylight: visibility=depth_map),
+    // suggested first where their rule is within the tolerance at the same resolution; empty: none.
+    std::string depthMapSetting;
     std::string wholeSceneWhy = "this mode's frames cover the whole scene: its paths leave the visible points";
     // A setting that ends the mode's paths early (multibounce: bundle_count <= 8 cuts a path at
     // K + 2 segments with point and spot lights' direct light and emitter points, K + 1 where it

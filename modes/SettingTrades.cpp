@@ -490,11 +490,22 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
                 (t.fitVisible ? " fitted to the visible points"
                               : " over the scene's bounding sphere") +
                 " misjudge the visibility of the points the camera sees by " + describe(e) +
-                " (cosine-weighted, against exact rays; tolerance 1 %): their pixel is too coarse "
-                "for " +
-                "the objects in view; ";
+                " (cosine-weighted, against exact rays; tolerance 1 %): ";
+            std::string reason = "their pixel is too coarse for the objects in view; ";
             std::string fix;
             const bool canFit = !t.fitKey.empty() && !t.fitVisible;
+            if (!t.depthMapSetting.empty()) {
+                // At the same resolution first: no larger frames, and the depth maps' rule judges
+                // a point against its centre's facet too (skylight's bundles carry no planes).
+                const TradeError f = bundleVisibilityError(rt, points, t.bundleResolution, t.fitVisible,
+                                                           kBundleDirectionsPerPoint, BundleRule::DepthMapNearestLight);
+                if (f.within()) {
+                    reason = "their lists take every fragment parallel to the point's plane, which the creases "
+                             "between small facets defeat; ";
+                    fix = "fix: " + t.depthMapSetting + " (" + describe(f) +
+                          "; one direction per map where a bundle serves two)";
+                }
+            }
             for (std::uint32_t r = t.bundleResolution; r <= kMaxBundleResolution && fix.empty();
                  r *= 2) {
                 if (canFit) {
@@ -523,7 +534,7 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
             }
             if (t.fitKey.empty())
                 fix += " (" + t.wholeSceneWhy + ")";
-            out.push_back(line + fix);
+            out.push_back(line + reason + fix);
         }
     }
     return out;

@@ -304,6 +304,8 @@ TradeSettings SkylightMode::trades() const {
     if (mOptions.depthMapVisibility) {
         t.bundleWhat = "depth maps";
         t.bundleRule = BundleRule::DepthMapNearestLight;
+    } else {
+        t.depthMapSetting = std::string(kVisibility) + "=depth_map";
     }
     return t;
 }
