@@ -55,9 +55,12 @@ struct ImageSet {
 // (what a mode trades, said before rendering). Empty keys: the mode has no such setting.
 // How a bundle check's replay answers visibility (SettingTrades.cpp, bundleVisibilityError):
 // ListAlongOwnPlane, a bundle's list with every fragment taken parallel to x's plane (skylight's
-// bundles); DepthMapNearestLight, a depth map's one surface nearest the light, with its facet's
-// plane (bundle/DepthMapVisibility.glsl: raster's environment maps, skylight's visibility = depth_map).
-enum class BundleRule { ListAlongOwnPlane, DepthMapNearestLight };
+// bundles, which carry no payload); ListAlongFacetPlanes, every fragment but x's own triangle on
+// its facet's plane where it lies ahead of x's (the walks with hit payloads: multibounce, bidir;
+// bundle/Traversal.glsl); DepthMapNearestLight, a depth map's one surface nearest the light, with
+// its facet's plane (bundle/DepthMapVisibility.glsl: raster's environment maps, skylight's
+// visibility = depth_map).
+enum class BundleRule { ListAlongOwnPlane, ListAlongFacetPlanes, DepthMapNearestLight };
 
 struct TradeSettings {
     std::string shadowKey;               // shadow cubes of point and spot lights

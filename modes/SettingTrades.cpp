@@ -280,7 +280,9 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
             // skylight's rule exactly (its bundles carry no payload). Multibounce and bidir place
             // fragments by their payload's normals and skip x's triangle; atlas walks by face bits:
             // for them this is the same pixel-offset error measured with skylight's rule, an
-            // approximation. Depth maps: only the surface nearest the light along d, which hides x
+            // approximation; with facet planes (the walks with payloads) each fragment but x's own
+            // triangle on its own plane where its centre-ray point lies ahead of x's plane. Depth
+            // maps: only the surface nearest the light along d, which hides x
             // where it lies beyond both x's plane and its own facet's plane (the map's normal) as
             // x's ray crosses them (blDepthMapCentreOccluded; the contact taps, which answer only
             // where the centre shows nothing near x, are not replayed).
@@ -301,6 +303,14 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
                     const EmbreeScene::RayHit& nearest = dir > 0.0f ? hits.back() : hits.front();
                     blocked = beyond(nearest, v.normal) && beyond(nearest, nearest.geometricNormal);
                 }
+            } else if (rule == BundleRule::ListAlongFacetPlanes) {
+                const glm::vec3 lit = glm::dot(v.normal, d) >= 0.0f ? v.normal : -v.normal;
+                blocked = std::any_of(hits.begin(), hits.end(), [&](const EmbreeScene::RayHit& h) {
+                    const bool own = h.mesh == v.mesh && h.triangle == v.triangle;
+                    const glm::vec3 point = centrePoint + (h.t - back) * omega;
+                    return !own && glm::dot(point - v.position, lit) > epsilon * c &&
+                           beyond(h, h.geometricNormal);
+                });
             } else {
                 blocked = std::any_of(hits.begin(), hits.end(),
                                       [&](const EmbreeScene::RayHit& h) { return beyond(h, v.normal); });

@@ -545,6 +545,10 @@ PassTimes AtlasMode::timings() const {
     return t;
 }
 
-TradeSettings AtlasMode::trades() const { return tradeSettingsOf(mSettings, kShadowResolution, kBundleResolution); }
+TradeSettings AtlasMode::trades() const {
+    TradeSettings t = tradeSettingsOf(mSettings, kShadowResolution, kBundleResolution);
+    t.bundleRule = BundleRule::DepthMapNearestLight;
+    return t;
+}
 
 } // namespace bl

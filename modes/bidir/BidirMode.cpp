@@ -415,6 +415,7 @@ TradeSettings BidirMode::trades() const {
     // strategy = vpl with one bounce pairs its VPLs with no bundle (setScene: pairBundles); only an
     // environment's bundles are left to judge.
     t.bundlesOnlyForEnvironment = mOptions.strategy == shader::kBidirStrategyVpl && !mOptions.twoBounce();
+    t.bundleRule = BundleRule::ListAlongFacetPlanes; // its pools carry hit payloads
     return t;
 }
 

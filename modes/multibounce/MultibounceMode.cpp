@@ -405,6 +405,7 @@ PassTimes MultibounceMode::timings() const { return mGpu ? mGpu->timer.totals() 
 // scene, so a frame fitted to the camera's points would miss them.
 TradeSettings MultibounceMode::trades() const {
     TradeSettings t = tradeSettingsOf(mSettings, kShadowResolution, kBundleResolution);
+    t.bundleRule = BundleRule::ListAlongFacetPlanes; // hit payloads (splats: their discs' planes)
     // A path draws each of K <= 8 bundles once: it ends after K bundle segments and the direct
     // light at their last vertex, K + 2 segments in all, emitters too where emitter points light
     // that vertex; without them (emitter_sampling = bundles) emitters, and the sky always, are met
