@@ -15,9 +15,13 @@ layout(location = 2) in vec3 inRelative;
 layout(location = 0) out vec4 outDepthNormal;
 
 void main() {
-    vec3 g = cross(dFdx(inRelative), dFdy(inRelative));
+    // The derivatives made unit first: a millimetre scene's are ~1e-9 a pixel, whose cross product
+    // would underflow float.
+    vec3 a = dFdx(inRelative), b = dFdy(inRelative);
+    float aa = dot(a, a), bb = dot(b, b);
+    vec3 g = aa > 0.0 && bb > 0.0 ? cross(a * inversesqrt(aa), b * inversesqrt(bb)) : vec3(0.0);
     float gg = dot(g, g);
     float lengthSquared = dot(inNormal, inNormal);
-    vec3 n = gg > 1e-36 ? g * inversesqrt(gg) : lengthSquared > 1e-30 ? inNormal * inversesqrt(lengthSquared) : vec3(0.0);
+    vec3 n = gg > 1e-12 ? g * inversesqrt(gg) : lengthSquared > 1e-30 ? inNormal * inversesqrt(lengthSquared) : vec3(0.0);
     outDepthNormal = vec4(inDepth, n);
 }
