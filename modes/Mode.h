@@ -59,7 +59,7 @@ struct ImageSet {
 // its facet's plane where it lies ahead of x's (the walks with hit payloads: multibounce, bidir;
 // bundle/Traversal.glsl); DepthMapNearestLight, a depth map's one surface nearest the light, with
 // its facet's plane (bundle/DepthMapVisibility.glsl: raster's environment maps, skylight's
-// visibility = depth_map).
+// visibility = depth_map; atlas, whose sorted lists exchange along exact centre rays).
 enum class BundleRule { ListAlongOwnPlane, ListAlongFacetPlanes, DepthMapNearestLight };
 
 struct TradeSettings {

@@ -277,12 +277,11 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
 
             // The pixel's centre ray through the whole sphere; depths measured from x's depth.
             // Lists: every fragment is taken parallel to x's plane, nothing skipped by identity:
-            // skylight's rule exactly (its bundles carry no payload). Multibounce and bidir place
-            // fragments by their payload's normals and skip x's triangle; atlas walks by face bits:
-            // for them this is the same pixel-offset error measured with skylight's rule, an
-            // approximation; with facet planes (the walks with payloads) each fragment but x's own
-            // triangle on its own plane where its centre-ray point lies ahead of x's plane. Depth
-            // maps: only the surface nearest the light along d, which hides x
+            // skylight's rule exactly (its bundles carry no payload). With facet planes (the walks
+            // with payloads, multibounce and bidir) each fragment but x's own triangle on its own
+            // plane where its centre-ray point lies ahead of x's plane. Depth maps (and atlas,
+            // whose sorted lists exchange along exact centre rays: an approximation): only the
+            // surface nearest the light along d, which hides x
             // where it lies beyond both x's plane and its own facet's plane (the map's normal) as
             // x's ray crosses them (blDepthMapCentreOccluded; the contact taps, which answer only
             // where the centre shows nothing near x, are not replayed).

@@ -16,9 +16,10 @@
 //                 (bundleVisibilityError). Depth maps (raster's environment maps, skylight's
 //                 visibility = depth_map) replay bundle/DepthMapVisibility.glsl's centre instead:
 //                 the one surface nearest the light, beyond both x's plane and its facet's
-//                 (BundleRule::DepthMapNearestLight). On the env-lit bunny at 512^2 that is -0.5 %
-//                 within its noise where the list rule says -13 % (raster read 0.990 / 0.995 /
-//                 0.9996 of the reference there, r / g / b).
+//                 (BundleRule::DepthMapNearestLight). On the env-lit bunny at 512^2 that is -0.8 %
+//                 (+- 0.2 %) where the list rule says -13 % (raster read 0.990 / 0.995 / 0.9996 of
+//                 the reference there, r / g / b). The walks with hit payloads (multibounce,
+//                 bidir) place each fragment on its facet's plane (ListAlongFacetPlanes).
 //   cut paths     a setting that ends paths early (multibounce's bundle_count <= 8): the share of
 //                 the image the longer paths carry, from the reference path tracer at a small size
 //                 with and without the cut (cutPathErrors).

@@ -11,7 +11,7 @@
 namespace bl {
 
 namespace {
-// Depth (r) and the surface's shading normal (gba): bundle/DepthMapVisibility.glsl.
+// Depth (r) and the normal of the surface's facet (gba): bundle/DepthMapVisibility.glsl.
 constexpr VkFormat kMapFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 } // namespace

@@ -125,8 +125,8 @@ float blBundleSurfaceEpsilon(BundleFrame frame, float cosine) {
 // The next surface along dir * omega (dir = +1 or -1) from x (pixel and depth from blBundlePixel,
 // normal n of either sign), kBundleNil if none: the fragment whose plane x's own ray crosses
 // first beyond blBundleSurfaceEpsilon, faces ignored (reflection is two-sided; emission's front
-// face is the caller's test). `payload`: the pool has hit payloads (`hits`), whose normals give
-// the planes and whose ids let x's own triangle `own` be skipped by identity (kBundleNil: no
+// face is the caller's test). `payload`: the pool has hit payloads (`hits`), whose facet normals
+// (BundleHit::plane) give the planes and whose ids let x's own triangle `own` be skipped by identity (kBundleNil: no
 // identity, e.g. splats, whose ids are point indices). Unsorted and sorted lists alike (the
 // crossing order can differ from the list's by a fraction of a pixel: every node is looked at).
 // `crossing`: the depth at which x's ray meets the found fragment's plane, so the caller can put

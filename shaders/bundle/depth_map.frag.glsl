@@ -15,8 +15,8 @@ layout(location = 2) in vec3 inRelative;
 layout(location = 0) out vec4 outDepthNormal;
 
 void main() {
-    // The derivatives made unit first: a millimetre scene's are ~1e-9 a pixel, whose cross product
-    // would underflow float.
+    // The derivatives made unit first: a nanometre scene's are ~1e-10 a pixel, whose cross
+    // product's square would underflow float (DepthMapPassTest).
     vec3 a = dFdx(inRelative), b = dFdy(inRelative);
     float aa = dot(a, a), bb = dot(b, b);
     vec3 g = aa > 0.0 && bb > 0.0 ? cross(a * inversesqrt(aa), b * inversesqrt(bb)) : vec3(0.0);

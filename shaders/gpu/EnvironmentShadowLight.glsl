@@ -8,8 +8,8 @@
 //
 // Visibility is the depth maps' test (bundle/DepthMapVisibility.glsl): x's pixel centre, which
 // box-filters the visibility over the pixel (the mean is kept except in strips half a pixel
-// diagonal wide beside contact lines, where light is lost), plus contact taps that keep a closed
-// room's creases dark. The map's surface counts from blBundleSurfaceEpsilon past both x's own
+// diagonal wide beside contact lines, where light is lost or gained), plus contact taps that keep
+// a closed room's creases dark where the centre shows nothing near x. The map's surface counts from blBundleSurfaceEpsilon past both x's own
 // plane and its facet's whatever its winding. That tolerance is partly a share of the map's pixel,
 // so an occluder closer than it passes and light is gained there. Both fall with the pixel; the
 // tests bound them by the strips' light either way. (On the stress suite's base-sky raster's

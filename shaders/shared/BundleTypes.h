@@ -48,7 +48,7 @@ struct BundleNode {
 BL_STATIC_ASSERT(sizeof(BundleNode) == 8, "BundleNode layout");
 
 // Payload "hit": what a consumer needs to shade a fragment without going back to the scene.
-// Written by the exact build variants (they know the triangle), 24 bytes per node beside the core.
+// Written by the exact build variants (they know the triangle), 32 bytes per node beside the core.
 struct BundleHit {
     uint normal;      // octahedral (2 x 16-bit snorm) shading normal in world space, as interpolated
                       // (not turned to any side: compare with the face bit or the query direction)
@@ -60,7 +60,7 @@ struct BundleHit {
                       // place it (bundle/Traversal.glsl). A smooth mesh's shading normal is not its
                       // facet's plane: placed by it, a bowl's neighbouring facets rose in front of
                       // the point leaving them, and multibounce's first bounce inside a bowl read
-                      // 0.74 of the reference (1.01 by the facets' planes).
+                      // 0.74 of the reference (0.98 by the facets' planes).
     uint pad;
 };
 BL_STATIC_ASSERT(sizeof(BundleHit) == 32, "BundleHit layout");

@@ -33,7 +33,7 @@ Mesh makeSquare(float size, std::uint32_t material, glm::vec3 centre) {
 Mesh makeBowl(int rings, int segments, std::uint32_t material) {
     Mesh m;
     m.name = "bowl";
-    for (int i = 0; i <= rings; ++i) {
+    for (int i = 0; i < rings; ++i) {
         const float theta = 0.5f * shader::kPi * (1.0f + float(i) / float(rings)); // from +y: equator to bottom
         for (int j = 0; j < segments; ++j) {
             const float phi = 2.0f * shader::kPi * float(j) / float(segments);
@@ -42,11 +42,16 @@ Mesh makeBowl(int rings, int segments, std::uint32_t material) {
             m.normals.push_back(n);
         }
     }
+    const std::uint32_t pole = std::uint32_t(m.positions.size()); // one vertex: the last ring fans to it
+    m.positions.push_back(glm::vec3(0.0f));
+    m.normals.push_back(glm::vec3(0.0f, -1.0f, 0.0f));
     for (int i = 0; i < rings; ++i) {
         for (int j = 0; j < segments; ++j) {
-            const auto at = [&](int r, int k) { return std::uint32_t(r * segments + (k % segments)); };
+            const auto at = [&](int r, int k) { return r == rings ? pole : std::uint32_t(r * segments + (k % segments)); };
             m.triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
-            m.triangles.push_back({at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)});
+            if (i + 1 < rings) {
+                m.triangles.push_back({at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)});
+            }
         }
     }
     m.material = material;
@@ -56,11 +61,12 @@ Mesh makeBowl(int rings, int segments, std::uint32_t material) {
 double largestNormalDeviation(const Mesh& mesh) {
     double largest = 0.0;
     for (const glm::uvec3& t : mesh.triangles) {
-        const glm::vec3 g = glm::normalize(glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
-                                                      mesh.positions[t.z] - mesh.positions[t.x]));
+        const glm::vec3 c = glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
+        if (!(glm::dot(c, c) > 0.0f)) continue; // no plane: draws nothing
+        const glm::vec3 g = glm::normalize(c);
         for (int k = 0; k < 3; ++k) {
-            const float c = std::abs(glm::dot(g, glm::normalize(mesh.normals[t[k]])));
-            largest = std::max(largest, std::acos(double(std::min(c, 1.0f))));
+            const float cosine = std::abs(glm::dot(g, glm::normalize(mesh.normals[t[k]])));
+            largest = std::max(largest, std::acos(double(std::min(cosine, 1.0f))));
         }
     }
     return largest;
@@ -72,7 +78,9 @@ std::map<std::array<float, 6>, std::vector<glm::vec3>> edgeNormals(const Mesh& m
     std::map<std::array<float, 6>, std::vector<glm::vec3>> edges;
     for (const glm::uvec3& t : mesh.triangles) {
         const glm::vec3 p[3] = {mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]};
-        const glm::vec3 n = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
+        const glm::vec3 c = glm::cross(p[1] - p[0], p[2] - p[0]);
+        if (!(glm::dot(c, c) > 0.0f)) continue; // no plane: draws nothing
+        const glm::vec3 n = glm::normalize(c);
         for (int e = 0; e < 3; ++e) {
             glm::vec3 a = p[e], b = p[(e + 1) % 3];
             if (std::tie(b.x, b.y, b.z) < std::tie(a.x, a.y, a.z)) std::swap(a, b);

@@ -293,7 +293,7 @@ TEST_F(Multibounce, WhiteFurnaceGivesTheGeometricSeries) {
 }
 
 // What memory cannot hold is refused with the numbers, not rendered wrong: a 1 MiB node cap holds
-// ~29,000 nodes, 64 Cornell bundles of 256^2 need ~4 million.
+// ~24,000 nodes (44 bytes each), 64 Cornell bundles of 256^2 need ~4 million.
 TEST_F(Multibounce, RefusesBundlesBeyondTheMemoryCap) {
     Scene s = loadSmall("data/cornell-box/cornell.toml", 8);
     std::unique_ptr<Mode> mode = createMode("multibounce", {"bundle_resolution=256", "memory_cap_mib=1"});
