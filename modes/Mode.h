@@ -51,8 +51,6 @@ struct ImageSet {
     const Image& radiance() const { return layers.at(0).second; }
 };
 
-// The settings whose accuracy depends on the scene, for the checks of modes/SettingTrades.h
-// (what a mode trades, said before rendering). Empty keys: the mode has no such setting.
 // How a bundle check's replay answers visibility (SettingTrades.cpp, bundleVisibilityError):
 // ListAlongOwnPlane, a bundle's list with every fragment taken parallel to x's plane (skylight's
 // bundles, which carry no payload); ListAlongFacetPlanes, every fragment but x's own triangle on
@@ -62,6 +60,8 @@ struct ImageSet {
 // visibility = depth_map; atlas, whose sorted lists exchange along exact centre rays).
 enum class BundleRule { ListAlongOwnPlane, ListAlongFacetPlanes, DepthMapNearestLight };
 
+// The settings whose accuracy depends on the scene, for the checks of modes/SettingTrades.h
+// (what a mode trades, said before rendering). Empty keys: the mode has no such setting.
 struct TradeSettings {
     std::string shadowKey;               // shadow cubes of point and spot lights
     std::uint32_t shadowResolution = 0;

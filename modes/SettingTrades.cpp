@@ -281,10 +281,10 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
             // with payloads, multibounce and bidir) each fragment but x's own triangle on its own
             // plane where its centre-ray point lies ahead of x's plane. Depth maps (and atlas,
             // whose sorted lists exchange along exact centre rays: an approximation): only the
-            // surface nearest the light along d, which hides x
-            // where it lies beyond both x's plane and its own facet's plane (the map's normal) as
-            // x's ray crosses them (blDepthMapCentreOccluded; the contact taps, which answer only
-            // where the centre shows nothing near x, are not replayed).
+            // surface nearest the light along d, which hides x where it lies beyond both x's plane
+            // and its own facet's plane (the map's normal) as x's ray crosses them
+            // (blDepthMapTexelHides; the contact taps, which answer only where the centre shows
+            // nothing near x, are not replayed).
             const glm::vec3 centrePoint = v.position - e;
             const float back = glm::length(centrePoint - centre) + radius * 1.01f;
             const std::vector<EmbreeScene::RayHit> hits =

@@ -17,7 +17,7 @@
 //                 visibility = depth_map) replay bundle/DepthMapVisibility.glsl's centre instead:
 //                 the one surface nearest the light, beyond both x's plane and its facet's
 //                 (BundleRule::DepthMapNearestLight). On the env-lit bunny at 512^2 that is -0.8 %
-//                 (+- 0.2 %) where the list rule says -13 % (raster read 0.990 / 0.995 / 0.9996 of
+//                 (+- 0.2 %) where the list rule says -13 % (raster read 0.990 / 0.995 / 0.999 of
 //                 the reference there, r / g / b). The walks with hit payloads (multibounce,
 //                 bidir) place each fragment on its facet's plane (ListAlongFacetPlanes).
 //   cut paths     a setting that ends paths early (multibounce's bundle_count <= 8): the share of

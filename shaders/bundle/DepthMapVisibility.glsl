@@ -25,28 +25,30 @@
 #define BL_BUNDLE_DEPTH_MAP_VISIBILITY_GLSL
 #include "bundle/Traversal.glsl"
 
-// Whether x (in `pixel` of the frame's tile at `depth`, from blBundlePixel) is hidden by the
-// surface at its own pixel's centre: x's ray crosses x's own plane through it and its facet's
-// plane beyond x by blBundleSurfaceEpsilon.
-bool blDepthMapCentreOccluded(BundleFrame frame, int layer, ivec2 pixel, vec3 x, float depth, vec3 n, float cosine) {
-    vec4 texel = BL_DEPTH_MAP_TEXEL(pixel, layer);
+// Whether the surface of `texel` (x's own pixel's centre, already read) hides x (in `pixel` of the
+// frame's tile at `depth`, from blBundlePixel): x's ray crosses x's own plane through it and its
+// facet's plane beyond x by blBundleSurfaceEpsilon.
+bool blDepthMapTexelHides(BundleFrame frame, vec4 texel, ivec2 pixel, vec3 x, float depth, vec3 n, float cosine) {
     float epsilon = blBundleSurfaceEpsilon(frame, cosine);
     return texel.x > blBundleSurfaceDepth(frame, pixel, x, depth, n) + epsilon &&
            texel.x > blBundleSurfaceDepth(frame, pixel, x, depth, texel.yzw) + epsilon;
 }
 
+bool blDepthMapCentreOccluded(BundleFrame frame, int layer, ivec2 pixel, vec3 x, float depth, vec3 n, float cosine) {
+    return blDepthMapTexelHides(frame, BL_DEPTH_MAP_TEXEL(pixel, layer), pixel, x, depth, n, cosine);
+}
+
 // Whether x is hidden from the light along omega in map `layer`: its centre, then, where the
-// centre shows nothing within the footprint's reach of x (sqrt(2) px over |cosine|, tangent
-// capped, as blBundleContactNearX), the contact taps.
+// centre shows nothing within the footprint's reach of x (blBundleFootprintReach), the contact
+// taps.
 bool blDepthMapOccluded(BundleFrame frame, int layer, ivec2 pixel, vec3 x, float depth, vec3 n, float cosine) {
-    if (blDepthMapCentreOccluded(frame, layer, pixel, x, depth, n, cosine)) {
+    vec4 centre = BL_DEPTH_MAP_TEXEL(pixel, layer);
+    if (blDepthMapTexelHides(frame, centre, pixel, x, depth, n, cosine)) {
         return true;
     }
-    vec4 centre = BL_DEPTH_MAP_TEXEL(pixel, layer);
     if (centre.x > -3.0e38) {
         vec3 centrePoint = blBundlePixelRay(frame, vec2(pixel) + 0.5) + centre.x * frame.direction;
-        float reach = 1.41421356 * frame.pixelSize * min(1.0 / max(abs(cosine), 1.0e-6), kBundleMaxOwnSurfaceTangent);
-        if (distance(centrePoint, x) <= reach) {
+        if (distance(centrePoint, x) <= blBundleFootprintReach(frame, cosine)) {
             return false;
         }
     }

@@ -204,6 +204,13 @@ float blBundleContactAhead(vec3 point, vec3 m, vec3 x, vec3 lit, float litCosine
     return ahead > epsilon * litCosine && above > epsilon * abs(facing) ? above / abs(facing) : -1.0;
 }
 
+// The footprint's diagonal on x's plane (normal n, cosine = n . omega): sqrt(2) px / |cosine|,
+// tangent capped; how near x a surface must be to count as x's neighbourhood (the depth maps'
+// taps and their gate, bundle/DepthMapVisibility.glsl).
+float blBundleFootprintReach(BundleFrame frame, float cosine) {
+    return 1.41421356 * frame.pixelSize * min(1.0 / max(abs(cosine), 1.0e-6), kBundleMaxOwnSurfaceTangent);
+}
+
 // (c) for visibility (the depth maps): whether the plane through `point` (normal m) meets x's
 // plane (through x, normal n, cosine = n . omega) within sqrt(2) px / |cosine| of x, the footprint's
 // diagonal on x's plane (tangent capped). A surface whose plane meets x's near x but which itself
@@ -213,8 +220,7 @@ float blBundleContactAhead(vec3 point, vec3 m, vec3 x, vec3 lit, float litCosine
 bool blBundleContactNearX(BundleFrame frame, vec3 point, vec3 m, vec3 x, vec3 n, float cosine) {
     float k = dot(m, n);
     float sine = sqrt(max(0.0, 1.0 - k * k));
-    float reach = 1.41421356 * frame.pixelSize * min(1.0 / max(abs(cosine), 1.0e-6), kBundleMaxOwnSurfaceTangent);
-    return abs(dot(point - x, m)) <= reach * sine;
+    return abs(dot(point - x, m)) <= blBundleFootprintReach(frame, cosine) * sine;
 }
 
 // (c) for the walks, which put the hit on the surface's plane: whether the plane through `anchor`

@@ -72,41 +72,34 @@ double largestNormalDeviation(const Mesh& mesh) {
     return largest;
 }
 
-namespace {
-// Each edge (its end points, ordered) with the unit normals of the triangles that have it.
-std::map<std::array<float, 6>, std::vector<glm::vec3>> edgeNormals(const Mesh& mesh) {
+EdgeStats edgeStats(const std::vector<Mesh>& meshes) {
+    // Each edge (its end points, ordered) with the unit normals of the triangles that have it.
     std::map<std::array<float, 6>, std::vector<glm::vec3>> edges;
-    for (const glm::uvec3& t : mesh.triangles) {
-        const glm::vec3 p[3] = {mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]};
-        const glm::vec3 c = glm::cross(p[1] - p[0], p[2] - p[0]);
-        if (!(glm::dot(c, c) > 0.0f)) continue; // no plane: draws nothing
-        const glm::vec3 n = glm::normalize(c);
-        for (int e = 0; e < 3; ++e) {
-            glm::vec3 a = p[e], b = p[(e + 1) % 3];
-            if (std::tie(b.x, b.y, b.z) < std::tie(a.x, a.y, a.z)) std::swap(a, b);
-            edges[{a.x, a.y, a.z, b.x, b.y, b.z}].push_back(n);
+    EdgeStats out;
+    for (const Mesh& mesh : meshes) {
+        for (const glm::uvec3& t : mesh.triangles) {
+            const glm::vec3 p[3] = {mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]};
+            const glm::vec3 c = glm::cross(p[1] - p[0], p[2] - p[0]);
+            if (!(glm::dot(c, c) > 0.0f)) continue; // no plane: draws nothing
+            out.area += 0.5 * double(glm::length(c));
+            const glm::vec3 n = glm::normalize(c);
+            for (int e = 0; e < 3; ++e) {
+                glm::vec3 a = p[e], b = p[(e + 1) % 3];
+                if (std::tie(b.x, b.y, b.z) < std::tie(a.x, a.y, a.z)) std::swap(a, b);
+                edges[{a.x, a.y, a.z, b.x, b.y, b.z}].push_back(n);
+            }
         }
     }
-    return edges;
-}
-} // namespace
-
-double largestDihedral(const Mesh& mesh) {
-    double largest = 0.0;
-    for (const auto& [edge, normals] : edgeNormals(mesh)) {
+    for (const auto& [e, normals] : edges) {
+        const double length = glm::length(glm::vec3(e[0], e[1], e[2]) - glm::vec3(e[3], e[4], e[5]));
+        const float cosine = normals.size() == 2 ? std::abs(glm::dot(normals[0], normals[1])) : 0.0f;
+        if (normals.size() == 1) out.borderLength += length;
+        if (normals.size() != 2 || cosine < 1.0f - 1e-4f) out.creaseLength += length;
         if (normals.size() == 2) {
-            largest = std::max(largest, std::acos(double(std::clamp(std::abs(glm::dot(normals[0], normals[1])), 0.0f, 1.0f))));
+            out.largestDihedral = std::max(out.largestDihedral, std::acos(double(std::min(cosine, 1.0f))));
         }
     }
-    return largest;
-}
-
-double borderLength(const Mesh& mesh) {
-    double length = 0.0;
-    for (const auto& [e, normals] : edgeNormals(mesh)) {
-        if (normals.size() == 1) length += glm::length(glm::vec3(e[0], e[1], e[2]) - glm::vec3(e[3], e[4], e[5]));
-    }
-    return length;
+    return out;
 }
 
 Scene bowlUnderSky(int rings, int segments, int resolution) {

@@ -15,10 +15,14 @@ Mesh makeRectangle(glm::vec2 lo, glm::vec2 hi, float height, bool facingDown, st
 Mesh makeBowl(int rings, int segments, std::uint32_t material);
 // The largest angle (radians) between a triangle's geometric normal and one of its vertex normals.
 double largestNormalDeviation(const Mesh& mesh);
-// Over the edges two triangles share (matched by position): the largest angle between their
-// planes (radians). And the length of the edges only one triangle has (the mesh's borders).
-double largestDihedral(const Mesh& mesh);
-double borderLength(const Mesh& mesh);
+// The edges of `meshes`, matched by position (across meshes too), over their triangles with a
+// plane: the area; the length of borders (edges one triangle has) and of creases (borders, edges
+// of more than two triangles, and edges of two whose planes differ: a coplanar diagonal is no
+// edge); the largest angle between the planes of two triangles sharing an edge (radians).
+struct EdgeStats {
+    double area = 0.0, borderLength = 0.0, creaseLength = 0.0, largestDihedral = 0.0;
+};
+EdgeStats edgeStats(const std::vector<Mesh>& meshes);
 // makeBowl(rings, segments) of albedo 0.8 under a constant white sky, seen from above into it
 // (every inner point concave: its neighbours rise in front of its plane). For a true hemisphere
 // each inner point sees the sky through the opening with form factor 1/2 (a point on a sphere's

@@ -128,14 +128,10 @@ TEST_F(Multibounce, SmoothCurvedMeshUnderASkyMatchesReference) {
     constexpr int kBowlBundles = 256;
     const ImageSet reference = bl::test::renderReference(s, kReferenceSpp);
     const Mesh& bowl = s.meshes[0];
-    const double theta = bl::test::largestDihedral(bowl), delta = bl::test::largestNormalDeviation(bowl);
+    const bl::test::EdgeStats edges = bl::test::edgeStats({bowl});
+    const double theta = edges.largestDihedral, delta = bl::test::largestNormalDeviation(bowl);
     const double pixel = 2.0 * double(s.bounds().radius()) / double(kBowlBundles);
-    double area = 0.0;
-    for (const glm::uvec3& t : bowl.triangles) {
-        area += 0.5 * double(glm::length(glm::cross(bowl.positions[t.y] - bowl.positions[t.x],
-                                                    bowl.positions[t.z] - bowl.positions[t.x])));
-    }
-    const double rim = kPi * pixel * bl::test::borderLength(bowl) / (4.0 * area);
+    const double rim = kPi * pixel * edges.borderLength / (4.0 * edges.area);
     const double perSegment = theta * theta + delta * delta + rim;
     std::printf("theta %.3f, delta %.3f rad, rim share %.4f: %.2f%% per bundle segment\n", theta, delta, rim,
                 100.0 * perSegment);

@@ -22,15 +22,13 @@
 #include "modes/Registry.h"
 #include "modes/reference/ReferenceTestSupport.h"
 #include "scene/SceneLoader.h"
+#include "support/AnalyticScenes.h"
 #include "support/Statistics.h"
 #include "support/TestFiles.h"
 #include "support/VulkanTest.h"
 
-#include <array>
 #include <cmath>
 #include <cstdio>
-#include <map>
-#include <tuple>
 
 namespace bl::test::multibounce {
 
@@ -61,41 +59,13 @@ constexpr double kEmitterShadowTolerance = 0.01;
 // albedo at most 0.8 (a geometric tail: 3 + 0.8 / 0.2) bounds its share of misassigned segments.
 constexpr double kRestSegments = 7.0;
 
-// Geometric edges of a scene and its area: triangle edges with one triangle (borders) or with
-// two whose planes differ (creases); a coplanar diagonal is no edge.
-struct EdgeMeasure {
-    double length = 0.0, area = 0.0;
-};
-inline EdgeMeasure edgeMeasure(const Scene& s) {
-    using Key = std::array<float, 6>;
-    std::map<Key, std::vector<glm::vec3>> normals;
-    EdgeMeasure m;
-    for (const Mesh& mesh : s.meshes) {
-        for (const glm::uvec3& t : mesh.triangles) {
-            const glm::vec3 p[3] = {mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]};
-            const glm::vec3 c = glm::cross(p[1] - p[0], p[2] - p[0]);
-            if (glm::length(c) <= 0.0f) continue;
-            m.area += 0.5 * double(glm::length(c));
-            for (int e = 0; e < 3; ++e) {
-                glm::vec3 a = p[e], b = p[(e + 1) % 3];
-                if (std::tie(b.x, b.y, b.z) < std::tie(a.x, a.y, a.z)) std::swap(a, b);
-                normals[{a.x, a.y, a.z, b.x, b.y, b.z}].push_back(glm::normalize(c));
-            }
-        }
-    }
-    for (const auto& [key, n] : normals) {
-        bool crease = n.size() != 2 || std::abs(glm::dot(n[0], n[1])) < 1.0f - 1e-4f;
-        if (crease) m.length += glm::length(glm::vec3(key[0], key[1], key[2]) - glm::vec3(key[3], key[4], key[5]));
-    }
-    return m;
-}
-
-// f = pi p sum(L) / (4 S): the share of bundle segments that can go wrong at bundle side R (above).
+// f = pi p sum(L) / (4 S): the share of bundle segments that can go wrong at bundle side R (above),
+// L the scene's creases and borders, S its area (edgeStats).
 inline double bundleMisassignment(const Scene& s, int resolution) {
-    const EdgeMeasure e = edgeMeasure(s);
+    const bl::test::EdgeStats e = bl::test::edgeStats(s.meshes);
     const double pixel = 2.0 * double(s.bounds().radius()) / double(resolution);
-    const double f = kPi * pixel * e.length / (4.0 * e.area);
-    std::printf("edges %.1f, area %.1f, bundle pixel %.3f: misassigned share f = %.4f at %d^2\n", e.length, e.area,
+    const double f = kPi * pixel * e.creaseLength / (4.0 * e.area);
+    std::printf("edges %.1f, area %.1f, bundle pixel %.3f: misassigned share f = %.4f at %d^2\n", e.creaseLength, e.area,
                 pixel, f, resolution);
     return f;
 }
