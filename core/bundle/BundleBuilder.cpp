@@ -39,9 +39,6 @@ BundleBuilder::BundleBuilder(const vk::Context& ctx, const gpu::GpuScene& scene,
                         vk::MemoryUse::Device);
     mTimer = vk::GpuTimer(ctx);
     if (options.backend == BundleBackend::Compute) {
-        if (options.payload != BundlePayload::None) {
-            throw Error("bundle backend compute: visibility bundles only (no hit payload)");
-        }
         mCompute = std::make_unique<ComputeBundleRasterizer>(ctx, scene);
     }
 }
@@ -56,6 +53,7 @@ void BundleBuilder::ensurePool(std::uint32_t pixels) {
     options.payload = mOptions.payload;
     options.memoryCapBytes = mOptions.memoryCapBytes;
     options.subgroupAllocation = mOptions.subgroupAllocation;
+    options.rasterized = mOptions.backend == BundleBackend::Raster;
     // A pool replaced for a larger frame starts from what the old one had learnt it needs.
     options.initialNodes = mPool ? mPool->capacity()
                                  : (mOptions.initialNodes ? mOptions.initialNodes : kInitialNodesPerPixel * pixels);
@@ -167,10 +165,11 @@ BundleStats BundleBuilder::build(const shader::BundleFrame& frame, double time,
 }
 
 void BundleBuilder::readLists(const BuiltBundle& bundle, std::vector<std::uint32_t>& heads,
-                              std::vector<shader::BundleNode>& nodes) const {
+                              std::vector<shader::BundleNode>& nodes, std::vector<shader::BundleHit>* hits) const {
     heads = mPool->readHeads(0);
     heads.resize(std::size_t(bundle.frame.width) * bundle.frame.height);
     nodes = mPool->readNodes(bundle.fragments);
+    if (hits) *hits = mPool->readHits(bundle.fragments);
 }
 
 std::uint64_t BundleBuilder::countFragments(const shader::BundleFrame& frame, double time, double* ms) {

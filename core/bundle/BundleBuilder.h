@@ -17,7 +17,7 @@
 namespace bl {
 
 // Who rasterizes the triangles: the graphics pipeline (BundlePool::recordBuild) or compute
-// shaders (ComputeBundleRasterizer: visibility bundles, no payload).
+// shaders (ComputeBundleRasterizer: triangles, the same nodes and hit payload).
 enum class BundleBackend { Raster, Compute };
 
 // The backend a setting names: "raster", "compute", or "auto": compute where it was measured
@@ -78,9 +78,10 @@ public:
     // Returns the fragment count; GPU milliseconds in *ms.
     std::uint64_t countFragments(const shader::BundleFrame& frame, double time, double* ms);
 
-    // A host copy of a built bundle's lists (tests, debugging): heads per pixel, then the nodes.
-    void readLists(const BuiltBundle& bundle, std::vector<std::uint32_t>& heads,
-                   std::vector<shader::BundleNode>& nodes) const;
+    // A host copy of a built bundle's lists (tests, debugging): heads per pixel, then the nodes,
+    // and (`hits`, with the hit payload) each node's hit.
+    void readLists(const BuiltBundle& bundle, std::vector<std::uint32_t>& heads, std::vector<shader::BundleNode>& nodes,
+                   std::vector<shader::BundleHit>* hits = nullptr) const;
 
     std::uint64_t capacity() const { return mPool ? mPool->capacity() : 0; }
     bool usesSubgroups() const;

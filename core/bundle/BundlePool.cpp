@@ -86,7 +86,7 @@ BundlePool::BundlePool(const vk::Context& ctx, const gpu::GpuScene& scene, const
     // With gl_PrimitiveID (the geometryShader feature) depths are exact ray-plane intersections;
     // without it they are interpolated, within ~pixelSize / 512 * tan(incidence) of exact.
     mExactDepth = ctx.geometryShader();
-    if (options.payload == BundlePayload::Hit && !mExactDepth) {
+    if (options.payload == BundlePayload::Hit && options.rasterized && !mExactDepth) {
         throw Error("the bundle hit payload needs the geometryShader feature (gl_PrimitiveID), which '" +
                     ctx.info().name + "' lacks");
     }
@@ -218,6 +218,10 @@ void BundlePool::recordBuild(VkCommandBuffer cmd, std::uint32_t slot, const shad
 }
 
 void BundlePool::recordBuilds(VkCommandBuffer cmd, std::span<const SlotBuild> builds, vk::GpuTimer* timer) const {
+    if (mOptions.payload == BundlePayload::Hit && !mExactDepth) {
+        throw Error("the bundle hit payload needs the geometryShader feature (gl_PrimitiveID) to be rasterized, which '" +
+                    mContext->info().name + "' lacks: build with bundle_backend = compute");
+    }
     // A slot twice would have its heads cleared after its first build's barrier had passed.
     std::vector<bool> seen(mOptions.slots, false);
     for (const SlotBuild& b : builds) {

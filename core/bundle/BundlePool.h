@@ -60,6 +60,8 @@ struct BundlePoolOptions {
     std::uint64_t memoryCapBytes = 0; // cap on node storage (nodes + payload + links); 0: half the
                                       // largest device-local heap, less the heads
     bool subgroupAllocation = true;   // one atomic per subgroup where the device allows it
+    bool rasterized = true;           // built by recordBuild (a hit payload needs gl_PrimitiveID
+                                      // there); false: by ComputeBundleRasterizer, which needs none
 };
 
 // The allocator's state after the builds of one command buffer completed.

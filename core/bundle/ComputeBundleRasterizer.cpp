@@ -42,9 +42,6 @@ ComputeBundleRasterizer::ComputeBundleRasterizer(const vk::Context& ctx, const g
 
 void ComputeBundleRasterizer::record(VkCommandBuffer cmd, const BundlePool& pool, std::uint32_t slot,
                                      const shader::BundleFrame& frame, double time, vk::GpuTimer* timer) const {
-    if (pool.payload() != BundlePayload::None) {
-        throw Error("bundle_backend = compute builds visibility bundles only (no hit payload): use raster");
-    }
     const std::uint32_t pixels = frame.width * frame.height;
     if (slot >= pool.slots() || pixels > pool.slotPixels() || pixels == 0) {
         throw Error("compute bundle build: slot " + std::to_string(slot) + " of " + std::to_string(pool.slots()) +
@@ -69,6 +66,7 @@ void ComputeBundleRasterizer::record(VkCommandBuffer cmd, const BundlePool& pool
     push.headAddress = splitAddress(heads);
     push.nodeAddress = view.nodes;
     push.counterAddress = view.counters;
+    push.payloadAddress = view.payload; // 0 without payload
     push.rowsPerBand = std::max(1u, shader::kBundleComputeBandPixels / frame.width);
     push.bands = (frame.height + push.rowsPerBand - 1) / push.rowsPerBand;
     push.bigAddress = splitAddress(deviceAddress(*mContext, mBig));
@@ -77,7 +75,8 @@ void ComputeBundleRasterizer::record(VkCommandBuffer cmd, const BundlePool& pool
     // triangles) stays within every device's maxComputeWorkGroupCount (65535).
     constexpr std::uint32_t kChunk = 65535;
     for (const gpu::GpuDraw& d : mScene->draws()) {
-      push.model = mScene->modelMatrix(d.mesh, time);
+      push.modelRows = glm::mat3x4(glm::transpose(mScene->modelMatrix(d.mesh, time)));
+      push.material = mScene->scene().meshes[d.mesh].material;
       push.vertexOffset = static_cast<std::uint32_t>(d.vertexOffset);
       for (std::uint32_t first = 0; first < d.indexCount / 3; first += kChunk) {
         push.firstPrimitive = d.firstIndex / 3 + first;

@@ -6,8 +6,9 @@
 // depth and face: shaders/bundle/compute_triangles.comp.glsl); a pool that runs out counts what it
 // could not store (status()), and the caller grows it and builds again.
 //
-// Scope: triangles without payload (visibility bundles: skylight). Point splats and the hit
-// payload stay with the rasterized build (record throws). Needs shaderInt64 (exact edge functions).
+// Scope: triangles, with or without the hit payload (the same hits as the rasterized exact build:
+// shaders/bundle/PoolHit.glsl). Point splats stay with the rasterized build. Needs shaderInt64
+// (exact edge functions).
 // One invocation per triangle; a triangle whose box holds more than kBundleComputeBandPixels pixels
 // is walked by one invocation per band of rows instead (an indirect dispatch).
 #pragma once

@@ -19,11 +19,13 @@ BL_STATIC_ASSERT(sizeof(BundleComputeClearPush) == 128, "BundleComputeClearPush 
 
 // The triangles pass: one invocation per triangle of one draw.
 struct BundleComputePush {
-    mat4 model;           // the mesh's rigid transform at the bundle's time
+    mat3x4 modelRows;     // the mesh's rigid transform at the bundle's time, as its three rows (the
+                          // fourth is 0 0 0 1): 16 bytes that the hit payload's address needs
     uvec2 frameAddress;
     uvec2 headAddress;
     uvec2 nodeAddress;
     uvec2 counterAddress;
+    uvec2 payloadAddress; // BundleHit per node, or 0 for visibility bundles
     uint firstPrimitive;  // global index of the draw's first triangle
     uint vertexOffset;
     uint triangleCount;   // of this draw
@@ -31,6 +33,8 @@ struct BundleComputePush {
     uvec2 bigAddress;     // BundleComputeBig: the draw's triangles too large for one invocation
     uint pass;            // kBundleComputeSmallPass or kBundleComputeBigPass
     uint bands;           // tile rows / rowsPerBand, rounded up
+    uint material;        // the mesh's material (hit payload)
+    uint pad0;
 };
 BL_STATIC_ASSERT(sizeof(BundleComputePush) == 128, "BundleComputePush layout");
 

@@ -11,8 +11,8 @@
 #include "bundle/PoolNodes.glsl"
 #include "bundle/Projection.glsl"
 #include "shared/GpuTypes.h"
-#include "shared/Barycentrics.h"
 #include "shared/Octahedral.h"
+#include "bundle/PoolHit.glsl"
 #ifdef BL_SUBGROUP_ALLOCATION
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_shuffle : require
@@ -72,12 +72,6 @@ bool planeDepth(BundleFrame frame, vec3 n, float offset, out float depth, out bo
     return blPoolPlaneDepth(frame, pixelRay(frame), n, offset, depth, frontFacesMinusOmega);
 }
 
-// A unit vector along v, or `fallback` when v cancelled to (nearly) zero: normalize(0) is NaN.
-vec3 safeNormalize(vec3 v, vec3 fallback) {
-    float lengthSquared = dot(v, v);
-    return lengthSquared > 1e-30 ? v * inversesqrt(lengthSquared) : fallback;
-}
-
 void main() {
     BundleFrame frame = BundleFrames(push.frameAddress).frames[0];
     BundleCounterBlock block = BundleCounterBlock(push.counterAddress);
@@ -128,26 +122,12 @@ void main() {
         hit.barycentric = 0u;
         hit.pad = 0u;
 #else
-        // Barycentrics of the ray's hit point, from the triangle's corners in world space.
         uint first = 3u * triangle;
-        GpuVertex v0 = vertices[indices[first] + push.vertexOffset];
-        GpuVertex v1 = vertices[indices[first + 1u] + push.vertexOffset];
-        GpuVertex v2 = vertices[indices[first + 2u] + push.vertexOffset];
-        vec3 p0 = (push.model * vec4(v0.positionU.xyz, 1.0)).xyz;
-        vec3 e1 = mat3(push.model) * (v1.positionU.xyz - v0.positionU.xyz);
-        vec3 e2 = mat3(push.model) * (v2.positionU.xyz - v0.positionU.xyz);
-        vec2 b = blTriangleBarycentrics(pixelRay(frame) + depth * frame.direction - p0, e1, e2);
-        float b0 = 1.0 - b.x - b.y;
-        vec3 shading = b0 * v0.normalV.xyz + b.x * v1.normalV.xyz + b.y * v2.normalV.xyz;
-        vec3 facet = safeNormalize(planeNormal, -frame.direction);
-        hit.normal = blPackOctahedral(safeNormalize(mat3(push.model) * shading, facet));
-        hit.plane = blPackOctahedral(facet);
-        hit.material = push.material & kBundleHitMaterialMask;
-        hit.uv = b0 * vec2(v0.positionU.w, v0.normalV.w) + b.x * vec2(v1.positionU.w, v1.normalV.w) +
-                 b.y * vec2(v2.positionU.w, v2.normalV.w);
-        hit.id = triangle;
-        hit.barycentric = packUnorm2x16(b);
-        hit.pad = 0u;
+        BlPoolTriangle corners = blPoolTriangle(vertices[indices[first] + push.vertexOffset],
+                                                vertices[indices[first + 1u] + push.vertexOffset],
+                                                vertices[indices[first + 2u] + push.vertexOffset], push.model,
+                                                planeNormal, -frame.direction, push.material, triangle);
+        hit = blPoolTriangleHit(corners, pixelRay(frame) + depth * frame.direction);
 #endif
         BundleHitPayload(push.payloadAddress).hits[index] = hit;
     }

@@ -7,7 +7,7 @@
 // (Projection.glsl), pixel centres tested with exact 64-bit edge functions and a top-left rule
 // (a centre on an edge shared by two triangles goes to exactly one), depth and face from the
 // triangle's plane along the pixel's ray, the allocator's overflow contract and the list link
-// from PoolNodes.glsl. No payload (the rasterized build writes it).
+// from PoolNodes.glsl, and the same hit payload (PoolHit.glsl) where the pool has one.
 //
 // Each row of a triangle's box is walked only over its covered span, found exactly from the three
 // edge functions (integer floor division, the same inequalities as the per-pixel test), so the
@@ -21,6 +21,7 @@
 // outer one: a triangle walked whole lost its fragments beyond that, 20% of them in Sponza at
 // 1024^2.)
 #include "bundle/ComputeBuildShared.h"
+#include "bundle/PoolHit.glsl"
 #include "bundle/PoolNodes.glsl"
 #include "bundle/Projection.glsl"
 #include "shared/GpuTypes.h"
@@ -78,14 +79,17 @@ void main() {
     if (local >= push.triangleCount || (bigPass && gl_GlobalInvocationID.x >= push.bands)) {
         return;
     }
+    // The rows stored as columns: a point's image is vec4(p, 1) * modelRows.
+    mat4 model = transpose(mat4(push.modelRows[0], push.modelRows[1], push.modelRows[2], vec4(0.0, 0.0, 0.0, 1.0)));
     BundleFrame frame = BundleFrames(push.frameAddress).frames[0];
     BundleCounterBlock block = BundleCounterBlock(push.counterAddress);
     uint triangle = push.firstPrimitive + local;
     i64vec2 v[3];
+    GpuVertex corners[3];
     for (uint k = 0u; k < 3u; ++k) {
-        GpuVertex vertex = vertices[indices[3u * triangle + k] + push.vertexOffset];
+        corners[k] = vertices[indices[3u * triangle + k] + push.vertexOffset];
         float depthIgnored;
-        vec2 snapped = blBundleSnappedGrid(frame, (push.model * vec4(vertex.positionU.xyz, 1.0)).xyz, depthIgnored);
+        vec2 snapped = blBundleSnappedGrid(frame, (model * vec4(corners[k].positionU.xyz, 1.0)).xyz, depthIgnored);
         if (any(isnan(snapped)) || any(isinf(snapped)) || any(greaterThan(abs(snapped), vec2(1.0e9)))) {
             return; // a vertex the rasterizer would clip away entirely or cannot place
         }
@@ -101,10 +105,16 @@ void main() {
         v[2] = t;
     }
     vec4 plane = planes[triangle];
-    vec3 n = mat3(push.model) * plane.xyz;
-    float offset = plane.w + dot(n, push.model[3].xyz);
+    vec3 n = mat3(model) * plane.xyz;
+    float offset = plane.w + dot(n, model[3].xyz);
     if (dot(n, n) == 0.0) {
         return; // GpuScene's kNoPlane: collinear or non-finite corners, nothing to hit
+    }
+    const bool payload = push.payloadAddress != uvec2(0u);
+    BlPoolTriangle hitCorners;
+    if (payload) {
+        hitCorners = blPoolTriangle(corners[0], corners[1], corners[2], model, n, -frame.direction, push.material,
+                                    triangle);
     }
     // Pixels of the tile whose centres (x + 1/2, y + 1/2 in the whole grid) lie in the bounding box.
     i64vec2 lo = min(v[0], min(v[1], v[2])), hi = max(v[0], max(v[1], v[2]));
@@ -154,9 +164,14 @@ void main() {
             int column = x - int(frame.tileX);
             float depth;
             bool front;
-            if (blPoolPlaneDepth(frame, blBundlePixelRay(frame, vec2(column, row) + 0.5), n, offset, depth, front) &&
-                depth >= frame.depthNear && depth <= frame.depthFar) {
-                blPoolLink(push.headAddress, push.nodeAddress, uint(row) * frame.width + uint(column), index++, depth, front);
+            vec3 ray = blBundlePixelRay(frame, vec2(column, row) + 0.5);
+            if (blPoolPlaneDepth(frame, ray, n, offset, depth, front) && depth >= frame.depthNear &&
+                depth <= frame.depthFar) {
+                blPoolLink(push.headAddress, push.nodeAddress, uint(row) * frame.width + uint(column), index, depth, front);
+                if (payload) {
+                    BundleHitPayload(push.payloadAddress).hits[index] = blPoolTriangleHit(hitCorners, ray + depth * frame.direction);
+                }
+                ++index;
             }
         }
     }
