@@ -52,13 +52,12 @@ struct ImageSet {
 };
 
 // How a bundle check's replay answers visibility (SettingTrades.cpp, bundleVisibilityError):
-// ListAlongOwnPlane, a bundle's list with every fragment taken parallel to x's plane (skylight's
-// bundles, which carry no payload); ListAlongFacetPlanes, every fragment but x's own triangle on
-// its facet's plane where it lies ahead of x's (the walks with hit payloads: multibounce, bidir;
-// bundle/Traversal.glsl); DepthMapNearestLight, a depth map's one surface nearest the light, with
-// its facet's plane (bundle/DepthMapVisibility.glsl: raster's environment maps, skylight's
-// visibility = depth_map; atlas, whose sorted lists exchange along exact centre rays).
-enum class BundleRule { ListAlongOwnPlane, ListAlongFacetPlanes, DepthMapNearestLight };
+// ListAlongFacetPlanes, every fragment but x's own triangle on its facet's plane where it lies
+// ahead of x's (the walks with hit payloads: multibounce, bidir, skylight; bundle/Traversal.glsl);
+// DepthMapNearestLight, a depth map's one surface nearest the light, with its facet's plane
+// (bundle/DepthMapVisibility.glsl: raster's environment maps, skylight's visibility = depth_map;
+// atlas, whose sorted lists exchange along exact centre rays).
+enum class BundleRule { ListAlongFacetPlanes, DepthMapNearestLight };
 
 // The settings whose accuracy depends on the scene, for the checks of modes/SettingTrades.h
 // (what a mode trades, said before rendering). Empty keys: the mode has no such setting.
@@ -75,10 +74,7 @@ struct TradeSettings {
     // the mode cannot fit them to the visible points (no fitKey); bundleRule, how the check
     // replays their visibility (raster's environment depth maps: DepthMapNearestLight).
     std::string bundleWhat = "bundles";
-    BundleRule bundleRule = BundleRule::ListAlongOwnPlane;
-    // The setting that answers visibility by depth maps instead (skylight: visibility=depth_map),
-    // suggested first where their rule is within the tolerance at the same resolution; empty: none.
-    std::string depthMapSetting;
+    BundleRule bundleRule = BundleRule::ListAlongFacetPlanes;
     std::string wholeSceneWhy = "this mode's frames cover the whole scene: its paths leave the visible points";
     // A setting that ends the mode's paths early (multibounce: bundle_count <= 8 cuts a path at
     // K + 2 segments with point and spot lights' direct light and emitter points, K + 1 where it

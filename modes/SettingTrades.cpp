@@ -7,6 +7,7 @@
 #include "scene/ScenePrecision.h"
 #include "scene/ShaderConversions.h"
 
+#include <shared/BundleContacts.h>
 #include <shared/Camera.h>
 #include <shared/CubeFaces.h>
 #include <shared/Lights.h>
@@ -39,8 +40,6 @@ constexpr std::uint32_t kMaxBundleResolution = 2048;
 constexpr float kShadowRelativeBias = 1e-3f;
 constexpr float kShadowParallelCosine = 1e-6f;
 constexpr int kShadowPcfTaps = 4;
-constexpr float kMaxOwnSurfaceTangent = 12.0f;
-constexpr float kSubpixelGrid = 256.0f;
 
 float uniform01(std::uint32_t a, std::uint32_t b, std::uint32_t dimension) {
     const std::uint32_t h =
@@ -137,17 +136,6 @@ float pcfVisibility(const EmbreeScene& rt, const glm::vec3& light, std::uint32_t
     return lit / float(kShadowPcfTaps * kShadowPcfTaps);
 }
 
-// Traversal.glsl's blBundleCrossing: the depth at which x's own ray (offset e from the centre ray)
-// crosses the plane with normal m through the centre ray's point at depth t.
-float crossing(const glm::vec3& omega, float t, const glm::vec3& e, const glm::vec3& m) {
-    const float c = glm::dot(m, omega);
-    const float rise = glm::dot(e, m);
-    const float limit = kMaxOwnSurfaceTangent * glm::length(e);
-    if (std::abs(rise) >= limit * std::abs(c))
-        return t - (rise * c >= 0.0f ? limit : -limit);
-    return t - rise / c;
-}
-
 // The largest extent of the points' projections on (ax, ay): the fitted frame's pixel is that
 // over resolution - 1 (core/bundle bundleFrameForPoints).
 float projectedExtent(const std::vector<ViewPoint>& points, const glm::vec3& ax,
@@ -236,6 +224,49 @@ TradeError shadowCubeError(const EmbreeScene& rt, const std::vector<ViewPoint>& 
     return acc.result();
 }
 
+// Where x's own list found nothing: whether the contact taps at x's end of the walk hide it
+// (bundle/Traversal.glsl, blBundleSurfaceNearestAcrossCreases, with the rules of
+// shared/BundleContacts.h): the three other pixels of x's footprint toward the quarter of its pixel
+// x lies in (stepX, stepY), each fragment of theirs ahead of x by rules (a) to (c), where x's own
+// centre ray (`hits`, depths `back` before its point at x's depth) leaves the neighbourhood open.
+bool contactTapsHide(const EmbreeScene& rt, const ViewPoint& v, const std::vector<EmbreeScene::RayHit>& hits,
+                     const glm::vec3& centrePoint, float back, const glm::vec3& omega, const glm::vec3& e,
+                     const glm::vec3& d, const glm::vec3& lit, float litCosine, float epsilon, float pixel,
+                     const glm::vec3& ax, const glm::vec3& ay, float stepX, float stepY) {
+    const auto own = [&](const EmbreeScene::RayHit& h) { return h.mesh == v.mesh && h.triangle == v.triangle; };
+    const float dir = glm::dot(d, omega) >= 0.0f ? 1.0f : -1.0f;
+    const float reach = shader::blBundleReach(pixel, glm::dot(v.normal, omega));
+    const float lateralSquared = glm::dot(e, e);
+    std::vector<glm::vec3> near;
+    bool roomAround = false;
+    for (const EmbreeScene::RayHit& h : hits) {
+        const glm::vec3 point = centrePoint + (h.t - back) * omega;
+        // Nothing was found: the walk's distance is unbounded.
+        const std::uint32_t kind =
+            shader::blBundleNearFragment(point, h.geometricNormal, h.t - back, lateralSquared, v.position, d, dir, lit,
+                                         litCosine, epsilon, reach, std::numeric_limits<float>::infinity());
+        roomAround = roomAround || kind == shader::kBundleFragmentRoom;
+        if (kind == shader::kBundleFragmentNeighbour && near.size() < 4) near.push_back(point);
+    }
+    const glm::vec3 offsets[3] = {stepX * ax, stepY * ay, stepX * ax + stepY * ay};
+    for (const glm::vec3& offset : offsets) {
+        const glm::vec3 tapCentre = centrePoint + pixel * offset;
+        for (const EmbreeScene::RayHit& h : rt.allHits(tapCentre - back * omega, omega, 2.0f * back)) {
+            const glm::vec3 m = h.geometricNormal;
+            if (own(h) || std::abs(glm::dot(m, omega)) * shader::kBundleMaxOwnSurfaceTangent < 1.0f) continue;
+            const glm::vec3 point = tapCentre + (h.t - back) * omega;
+            if (shader::blBundleContactAhead(point, m, v.position, lit, litCosine, d, epsilon) < 0.0f) continue;
+            if (!shader::blBundleContactNearBoth(omega, pixel, point, m, v.position, lit)) continue;
+            const float tolerance = epsilon * std::abs(glm::dot(m, d));
+            const bool neighbourOnXsSide = std::any_of(near.begin(), near.end(), [&](const glm::vec3& q) {
+                return shader::blBundleOnXsSide(q, point, m, v.position, tolerance);
+            });
+            if (!neighbourOnXsSide || roomAround) return true;
+        }
+    }
+    return false;
+}
+
 TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPoint>& points,
                                  std::uint32_t resolution, bool fitVisible,
                                  std::uint32_t directionsPerPoint, BundleRule rule) {
@@ -276,10 +307,10 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
                              std::numeric_limits<float>::infinity());
 
             // The pixel's centre ray through the whole sphere; depths measured from x's depth.
-            // Lists: every fragment is taken parallel to x's plane, nothing skipped by identity:
-            // skylight's rule exactly (its bundles carry no payload). With facet planes (the walks
-            // with payloads, multibounce and bidir) each fragment but x's own triangle on its own
-            // plane where its centre-ray point lies ahead of x's plane. Depth maps (and atlas,
+            // Lists (the walks with payloads: multibounce, bidir, skylight): each fragment but x's
+            // own triangle on its own facet's plane where its centre-ray point lies ahead of x's
+            // plane; where that finds nothing, the near end's contact taps behind their gate
+            // (shared/BundleContacts.h). Depth maps (and atlas,
             // whose sorted lists exchange along exact centre rays: an approximation): only the
             // surface nearest the light along d, which hides x where it lies beyond both x's plane
             // and its own facet's plane (the map's normal) as x's ray crosses them
@@ -289,12 +320,13 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
             const float back = glm::length(centrePoint - centre) + radius * 1.01f;
             const std::vector<EmbreeScene::RayHit> hits =
                 rt.allHits(centrePoint - back * omega, omega, 2.0f * back);
-            const float c = std::max(std::abs(cosine), 1.0f / kMaxOwnSurfaceTangent);
-            const float tangent =
-                std::min(std::sqrt(std::max(0.0f, 1.0f - c * c)) / c, kMaxOwnSurfaceTangent);
-            const float epsilon = depthEpsilon / c + pixel * tangent / kSubpixelGrid;
+            const float c = std::max(std::abs(cosine), 1.0f / shader::kBundleMaxOwnSurfaceTangent);
+            const float epsilon = shader::blBundleOwnSurfaceTolerance(depthEpsilon, pixel, cosine);
+            const auto distanceTo = [&](const EmbreeScene::RayHit& h, const glm::vec3& plane) {
+                return dir * shader::blBundlePlaneCrossing(omega, h.t - back, e, plane);
+            };
             const auto beyond = [&](const EmbreeScene::RayHit& h, const glm::vec3& plane) {
-                return dir * crossing(omega, h.t - back, e, plane) > epsilon;
+                return distanceTo(h, plane) > epsilon;
             };
             bool blocked = false;
             if (rule == BundleRule::DepthMapNearestLight) {
@@ -302,17 +334,21 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
                     const EmbreeScene::RayHit& nearest = dir > 0.0f ? hits.back() : hits.front();
                     blocked = beyond(nearest, v.normal) && beyond(nearest, nearest.geometricNormal);
                 }
-            } else if (rule == BundleRule::ListAlongFacetPlanes) {
-                const glm::vec3 lit = glm::dot(v.normal, d) >= 0.0f ? v.normal : -v.normal;
-                blocked = std::any_of(hits.begin(), hits.end(), [&](const EmbreeScene::RayHit& h) {
-                    const bool own = h.mesh == v.mesh && h.triangle == v.triangle;
-                    const glm::vec3 point = centrePoint + (h.t - back) * omega;
-                    return !own && glm::dot(point - v.position, lit) > epsilon * c &&
-                           beyond(h, h.geometricNormal);
-                });
             } else {
-                blocked = std::any_of(hits.begin(), hits.end(),
-                                      [&](const EmbreeScene::RayHit& h) { return beyond(h, v.normal); });
+                const glm::vec3 lit = glm::dot(v.normal, d) >= 0.0f ? v.normal : -v.normal;
+                const auto own = [&](const EmbreeScene::RayHit& h) {
+                    return h.mesh == v.mesh && h.triangle == v.triangle;
+                };
+                float walkFound = std::numeric_limits<float>::infinity();
+                for (const EmbreeScene::RayHit& h : hits) {
+                    const glm::vec3 point = centrePoint + (h.t - back) * omega;
+                    if (!own(h) && glm::dot(point - v.position, lit) > epsilon * c && beyond(h, h.geometricNormal))
+                        walkFound = std::min(walkFound, distanceTo(h, h.geometricNormal));
+                }
+                blocked = walkFound < std::numeric_limits<float>::infinity() ||
+                          contactTapsHide(rt, v, hits, centrePoint, back, omega, e, d, lit, std::abs(cosine), epsilon,
+                                          pixel, ax, ay, uniform01(i, k, 3) < 0.5f ? -1.0f : 1.0f,
+                                          uniform01(i, k, 4) < 0.5f ? -1.0f : 1.0f);
             }
             acc.add(exact ? weight : 0.0, blocked ? 0.0 : weight);
         }
@@ -503,18 +539,6 @@ std::vector<std::string> settingTrades(const Mode& mode, const Scene& scene) {
             std::string reason = "their pixel is too coarse for the objects in view; ";
             std::string fix;
             const bool canFit = !t.fitKey.empty() && !t.fitVisible;
-            if (!t.depthMapSetting.empty()) {
-                // At the same resolution first: no larger frames, and the depth maps' rule judges
-                // a point against its centre's facet too (skylight's bundles carry no planes).
-                const TradeError f = bundleVisibilityError(rt, points, t.bundleResolution, t.fitVisible,
-                                                           kBundleDirectionsPerPoint, BundleRule::DepthMapNearestLight);
-                if (f.within()) {
-                    reason = "their lists take every fragment parallel to the point's plane, which the creases "
-                             "between small facets defeat; ";
-                    fix = "fix: " + t.depthMapSetting + " (" + describe(f) +
-                          "; one direction per map where a bundle serves two)";
-                }
-            }
             for (std::uint32_t r = t.bundleResolution; r <= kMaxBundleResolution && fix.empty();
                  r *= 2) {
                 if (canFit) {

@@ -8,18 +8,25 @@
 //                 lookup's crease rule is not replayed: it changes only points within two texels of
 //                 a crease on the outline of a room lit from outside (tests/core/gpu/
 //                 ShadowCubeCreaseTest.cpp), where the filter alone leaks.
-//   bundle pixel  the bundle query of shaders/bundle/Traversal.glsl (blBundleSurfaceNearest without
-//                 payload, as skylight: the fragments of the pixel's centre ray, up to 0.71 px
-//                 beside x, placed where x's own ray crosses x's plane through them), replayed with
-//                 rays, against exact rays from x: the relative error of the visible points'
-//                 cosine-weighted visibility (ambient occlusion) over uniform directions
-//                 (bundleVisibilityError). Depth maps (raster's environment maps, skylight's
+//   bundle pixel  the bundle query of shaders/bundle/Traversal.glsl, as the walks with hit payloads
+//                 run it (multibounce, bidir, skylight: blBundleSurfaceNearestAcrossCreases): the
+//                 fragments of the pixel's centre ray, up to 0.71 px beside x, each placed where
+//                 x's own ray crosses its facet's plane, x's own triangle skipped; where that finds
+//                 nothing, the near end's contact taps behind their gate (the rules of
+//                 shaders/shared/BundleContacts.h, run by both; BundleRule::ListAlongFacetPlanes),
+//                 replayed with rays, against exact rays from x: the relative error of the visible
+//                 points' cosine-weighted visibility (ambient occlusion) over uniform directions
+//                 (bundleVisibilityError). It predicts the images: a flat-shaded heightfield under
+//                 a sky -4.49 / -1.08 / -0.23 % at 64 / 128 / 256^2, rendered -4.80 / -1.09 /
+//                 -0.18 %; the flat-shaded bunny -16.6 / -3.8 % at 128 / 512^2, rendered -15.6 /
+//                 -3.6 % (skylight). Depth maps (raster's environment maps, skylight's
 //                 visibility = depth_map) replay bundle/DepthMapVisibility.glsl's centre instead:
 //                 the one surface nearest the light, beyond both x's plane and its facet's
-//                 (BundleRule::DepthMapNearestLight). On the env-lit bunny at 512^2 that is -0.8 %
-//                 (+- 0.2 %) where the list rule says -13 % (raster read 0.990 / 0.995 / 0.999 of
-//                 the reference there, r / g / b). The walks with hit payloads (multibounce,
-//                 bidir) place each fragment on its facet's plane (ListAlongFacetPlanes).
+//                 (BundleRule::DepthMapNearestLight; its taps are not replayed). On the env-lit
+//                 bunny at 512^2 that is -0.8 % (+- 0.2 %) (raster read 0.990 / 0.995 / 0.999 of
+//                 the reference there, r / g / b). Neither replays smooth shading normals: their
+//                 points sit on the facets (the bunny under a constant sky, smooth as in its file,
+//                 read 0.953 in raster and 0.907 in skylight at 512^2, flat-shaded 0.992 / 0.964).
 //   cut paths     a setting that ends paths early (multibounce's bundle_count <= 8): the share of
 //                 the image the longer paths carry, from the reference path tracer at a small size
 //                 with and without the cut (cutPathErrors).
@@ -96,7 +103,7 @@ TradeError shadowCubeError(const EmbreeScene& rt, const std::vector<ViewPoint>& 
 // scene's bounding sphere, or fitted to the view points when `fitVisible`), against exact rays.
 TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPoint>& points,
                                  std::uint32_t resolution, bool fitVisible,
-                                 std::uint32_t directionsPerPoint, BundleRule rule = BundleRule::ListAlongOwnPlane);
+                                 std::uint32_t directionsPerPoint, BundleRule rule = BundleRule::ListAlongFacetPlanes);
 
 // Relative error of the image mean (sum of every pixel's r + g + b) when paths end after each of
 // `segments` segments, against paths of up to `uncut`: the reference path tracer at a small size

@@ -122,6 +122,8 @@ void SkylightMode::setScene(const Scene& scene, vk::Context* ctx) {
     BundleBuilderOptions options;
     options.memoryCapBytes = mOptions.memoryCapBytes;
     options.backend = chooseBundleBackend(*ctx, mOptions.bundleBackend);
+    // The walk places each fragment by its facet's plane (visibility.comp.glsl).
+    options.payload = BundlePayload::Hit;
     g->builder = std::make_unique<BundleBuilder>(*ctx, *g->scene, options);
     const bool depthMapVisibility = mOptions.depthMapVisibility;
     if (depthMapVisibility) {
@@ -262,6 +264,7 @@ void SkylightMode::iterate(const IterationInfo& info) {
             push.headAddress = split(built.heads);
             push.nodeAddress = split(built.nodes);
             push.counterAddress = split(built.counters);
+            push.hitAddress = split(built.payload);
             push.addBase = first ? 1u : 0u;
             g.timer.begin(cmd);
             if (gbufferWithBundle) {
@@ -304,8 +307,6 @@ TradeSettings SkylightMode::trades() const {
     if (mOptions.depthMapVisibility) {
         t.bundleWhat = "depth maps";
         t.bundleRule = BundleRule::DepthMapNearestLight;
-    } else {
-        t.depthMapSetting = std::string(kVisibility) + "=depth_map";
     }
     return t;
 }

@@ -5,6 +5,7 @@
 #define BL_BUNDLE_TRAVERSAL_GLSL
 #include "bundle/BundleBuffers.glsl"
 #include "bundle/Projection.glsl"
+#include "shared/BundleContacts.h"
 #include "shared/Octahedral.h"
 
 
@@ -89,13 +90,7 @@ uint blBundleSortedNearest(BundleNodes nodes, uint head, float d, float dir, flo
 // omega) crosses the plane with normal m through the centre ray's point at depth t. Grazing planes:
 // the shift is capped at kBundleMaxOwnSurfaceTangent |e| (where |m . omega| < 0.083).
 float blBundleCrossing(BundleFrame frame, float t, vec3 e, vec3 m) {
-    float c = dot(m, frame.direction);
-    float rise = dot(e, m); // the plane lies rise / c deeper on the centre ray than on x's ray
-    float limit = kBundleMaxOwnSurfaceTangent * length(e);
-    if (abs(rise) >= limit * abs(c)) {
-        return t - (rise * c >= 0.0 ? limit : -limit);
-    }
-    return t - rise / c;
+    return blBundlePlaneCrossing(frame.direction, t, e, m);
 }
 
 // x's offset from its bundle pixel's centre ray (|e| <= 0.71 px).
@@ -117,9 +112,7 @@ float blBundleSurfaceDepth(BundleFrame frame, ivec2 pixel, vec3 x, float depth, 
 // centre ray (vertices snapped to 1/kBundleSubpixelGrid px: that much times the plane's slope).
 // Nothing real is skipped beyond that: closer is a contact.
 float blBundleSurfaceEpsilon(BundleFrame frame, float cosine) {
-    float c = max(abs(cosine), 1.0 / kBundleMaxOwnSurfaceTangent);
-    float tangent = min(sqrt(max(0.0, 1.0 - c * c)) / c, kBundleMaxOwnSurfaceTangent);
-    return frame.depthEpsilon / c + frame.pixelSize * tangent / kBundleSubpixelGrid;
+    return blBundleOwnSurfaceTolerance(frame.depthEpsilon, frame.pixelSize, cosine);
 }
 
 // The next surface along dir * omega (dir = +1 or -1) from x (pixel and depth from blBundlePixel,
@@ -191,25 +184,15 @@ uint blBundleSurfaceNearest(BundleNodes nodes, uint head, BundleHitPayload hits,
 // fails (c) (its plane does not meet x's near x): open scenes keep the centre's answer there. What
 // stays open: a hiding face that no centre of the footprint shows (seen nearly edge-on, or at the
 // corner where three outlines meet; tests/core/bundle/ClosedBoxCreaseTest.cpp counts them).
+// The walks ask the taps at x's end only behind a gate (shared/BundleContacts.h,
+// blBundleNearFragment): a concave crease between small facets meets (a) to (c) as well.
 
-// (a) and (b) above: the crossing's distance along d, or -1.
-float blBundleContactAhead(vec3 point, vec3 m, vec3 x, vec3 lit, float litCosine, vec3 d, float epsilon) {
-    float facing = dot(m, d);
-    if (facing == 0.0) {
-        return -1.0;
-    }
-    m = facing < 0.0 ? -m : m; // toward d: winding plays no part
-    float ahead = dot(point - x, lit);
-    float above = dot(point - x, m);
-    return ahead > epsilon * litCosine && above > epsilon * abs(facing) ? above / abs(facing) : -1.0;
-}
+// (a) and (b) above: blBundleContactAhead (shared/BundleContacts.h).
 
 // The footprint's diagonal on x's plane (normal n, cosine = n . omega): sqrt(2) px / |cosine|,
 // tangent capped; how near x a surface must be to count as x's neighbourhood (the depth maps'
 // taps and their gate, bundle/DepthMapVisibility.glsl).
-float blBundleFootprintReach(BundleFrame frame, float cosine) {
-    return 1.41421356 * frame.pixelSize * min(1.0 / max(abs(cosine), 1.0e-6), kBundleMaxOwnSurfaceTangent);
-}
+float blBundleFootprintReach(BundleFrame frame, float cosine) { return blBundleReach(frame.pixelSize, cosine); }
 
 // (c) for visibility (the depth maps): whether the plane through `point` (normal m) meets x's
 // plane (through x, normal n, cosine = n . omega) within sqrt(2) px / |cosine| of x, the footprint's
@@ -223,26 +206,9 @@ bool blBundleContactNearX(BundleFrame frame, vec3 point, vec3 m, vec3 x, vec3 n,
     return abs(dot(point - x, m)) <= blBundleFootprintReach(frame, cosine) * sine;
 }
 
-// (c) for the walks, which put the hit on the surface's plane: whether the plane through `anchor`
-// (normal anchorNormal) and the plane through `point` (normal m) meet along a line that passes
-// within sqrt(2) px (the diagonal of the 2x2 cell of pixel centres around the anchor's projection;
-// a line crossing the cell passes that near every corner) of both points, measured in projection
-// along omega. Parallel planes never meet. Both points: a face whose plane meets x's near x but
-// which stays far away in its plane would put the hit in the air.
+// (c) for the walks (shared/BundleContacts.h).
 bool blBundleContactNearBoth(BundleFrame frame, vec3 point, vec3 m, vec3 anchor, vec3 anchorNormal) {
-    vec3 line = cross(anchorNormal, m);
-    float sine = length(line);
-    if (sine < 1.0e-4) {
-        return false;
-    }
-    line /= sine;
-    // Each point's distance to the line within its own plane, then that offset's projection.
-    float anchorToLine = abs(dot(point - anchor, m)) / sine;
-    float pointToLine = abs(dot(anchor - point, anchorNormal)) / sine;
-    float c0 = dot(cross(line, anchorNormal), frame.direction);
-    float c1 = dot(cross(line, m), frame.direction);
-    float limit = 1.41421356 * frame.pixelSize;
-    return anchorToLine * sqrt(max(0.0, 1.0 - c0 * c0)) <= limit && pointToLine * sqrt(max(0.0, 1.0 - c1 * c1)) <= limit;
+    return blBundleContactNearBoth(frame.direction, frame.pixelSize, point, m, anchor, anchorNormal);
 }
 
 // The three taps of x's footprint (pixel: x's own, from blBundlePixel); a tap outside the frame's
@@ -258,6 +224,43 @@ void blBundleContactTaps(BundleFrame frame, vec3 x, ivec2 pixel, out ivec2 taps[
             taps[i] = ivec2(-1);
         }
     }
+}
+
+// What x's own centre ray shows near x, for the near end's gate (shared/BundleContacts.h,
+// blBundleNearFragment): the first kBundleNearPoints neighbours' centre-ray points and their count;
+// `roomAround`: a fragment of the list makes x's neighbourhood a room's.
+const uint kBundleNearPoints = 4u;
+uint blBundleListNearX(BundleNodes nodes, BundleHitPayload hits, uint head, BundleFrame frame, ivec2 pixel, vec3 x,
+                       float depth, vec3 d, vec3 lit, float litCosine, float epsilon, float reach, float walkFound,
+                       out vec3 near[kBundleNearPoints], out bool roomAround) {
+    vec3 ray = blBundlePixelRay(frame, vec2(pixel) + 0.5);
+    vec3 e = x - (ray + depth * frame.direction);
+    float lateralSquared = dot(e, e);
+    float dir = dot(d, frame.direction) >= 0.0 ? 1.0 : -1.0;
+    uint count = 0u;
+    roomAround = false;
+    for (uint i = head; i != kBundleNil;) {
+        BundleNode node = nodes.nodes[i];
+        vec3 point = ray + node.depth * frame.direction;
+        uint kind = blBundleNearFragment(point, blUnpackOctahedral(hits.hits[i].plane), node.depth - depth,
+                                         lateralSquared, x, d, dir, lit, litCosine, epsilon, reach, walkFound);
+        roomAround = roomAround || kind == kBundleFragmentRoom;
+        if (kind == kBundleFragmentNeighbour && count < kBundleNearPoints) {
+            near[count++] = point;
+        }
+        i = node.next & kBundleIndexMask;
+    }
+    return count;
+}
+
+// Whether one of x's near points lies on x's side of the plane through `point` (normal m).
+bool blBundleNearXOnItsSide(vec3 near[kBundleNearPoints], uint count, vec3 point, vec3 m, vec3 x, float tolerance) {
+    for (uint k = 0u; k < count; ++k) {
+        if (blBundleOnXsSide(near[k], point, m, x, tolerance)) {
+            return true;
+        }
+    }
+    return false;
 }
 
 // blBundleSurfaceNearest on a pool with hit payloads, with the footprint's taps (above) at both ends
@@ -282,6 +285,12 @@ uint blBundleSurfaceNearestAcrossCreases(BundleNodes nodes, BundleHeads heads, B
     // The far end: the own list's hit and its plane.
     bool found = best != kBundleNil;
     float bestDistance = found ? dir * (crossing - depth) : 3.0e38;
+    // x's neighbourhood as its own centre ray shows it (the near end's gate, below).
+    vec3 near[kBundleNearPoints];
+    float reach = blBundleFootprintReach(frame, cosine);
+    bool roomAround;
+    uint nearCount = blBundleListNearX(nodes, hits, blBundleHead(heads, frame, pixel), frame, pixel, x, depth, d, lit,
+                                       abs(cosine), epsilon, reach, bestDistance, near, roomAround);
     vec3 hitPoint = found ? x + bestDistance * d : x;
     vec3 hitNormal = found ? blUnpackOctahedral(hits.hits[best].plane) : n;
     hitNormal = dot(hitNormal, d) > 0.0 ? -hitNormal : hitNormal; // toward x's side
@@ -312,7 +321,11 @@ uint blBundleSurfaceNearestAcrossCreases(BundleNodes nodes, BundleHeads heads, B
             // lies behind it, and its plane is crossed in the air above the edge).
             bool farEnd = found && distance < ownDistance && dot(point - hitPoint, hitNormal) > hitEpsilon &&
                           blBundleContactNearBoth(frame, point, m, hitPoint, hitNormal);
-            if (farEnd || blBundleContactNearBoth(frame, point, m, x, lit)) {
+            // The near end, behind its gate (shared/BundleContacts.h).
+            bool nearEnd = blBundleContactNearBoth(frame, point, m, x, lit) &&
+                           (!blBundleNearXOnItsSide(near, nearCount, point, m, x, epsilon * abs(dot(m, d))) ||
+                            roomAround);
+            if (farEnd || nearEnd) {
                 best = index;
                 bestDistance = distance;
                 hitPixel = taps[t];

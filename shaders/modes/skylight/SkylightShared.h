@@ -26,8 +26,9 @@ struct SkylightPush {
     uint seed;             // the run's seed and this direction's index: the lobe samples' stream
     uint iteration;
     uvec2 counterAddress;  // bundle visibility: the pool's BundleCounters (an overflowed build adds nothing)
+    uvec2 hitAddress;      // bundle visibility: the nodes' BundleHit payload (each fragment's facet plane)
 };
-BL_STATIC_ASSERT(sizeof(SkylightPush) == 112, "SkylightPush layout");
+BL_STATIC_ASSERT(sizeof(SkylightPush) == 120, "SkylightPush layout");
 
 // Bundle: omega and -omega for every point (pdf p_r). Depth map (a directional shadow map): omega
 // only, for the points on its side (pdf q on the sphere); the others wait for another direction.

@@ -48,14 +48,18 @@ vec3 blSkylightIrradiance(vec3 n) {
 }
 
 // Both visibilities count what lies past x's own surface by blBundleSurfaceEpsilon, whatever its
-// winding (bundle/Traversal.glsl). These bundles carry no hit payload: every fragment is taken
-// parallel to x's plane, nothing is skipped by identity.
-bool occluded(BlBundleLightSample s, ivec2 bundlePixel, vec3 x, float depth, vec3 n) {
+// winding (bundle/Traversal.glsl). The bundles' walk is multibounce's: every fragment placed by its
+// facet's plane from the hit payload, x's own triangle skipped, a closed room's creases found by
+// the footprint's taps behind their gate. (Without the payload every fragment was taken parallel
+// to x's plane: on a finely tessellated mesh a small concave facet beside x rose in front of it,
+// and the bunny under a constant sky read 0.73 of the reference's direct light at 512^2; 0.91 now.)
+bool occluded(BlBundleLightSample s, ivec2 bundlePixel, vec3 x, float depth, vec3 n, uint ownTriangle) {
     if (push.visibility == kSkylightVisibilityBundle) {
-        uint head = blBundleHead(BundleHeads(push.headAddress), frame, bundlePixel);
         float unusedCrossing;
-        return blBundleSurfaceNearest(BundleNodes(push.nodeAddress), head, BundleHitPayload(uvec2(0u)), false,
-                                      kBundleNil, frame, bundlePixel, x, depth, n, s.side, unusedCrossing) != kBundleNil;
+        ivec2 unusedHitPixel;
+        return blBundleSurfaceNearestAcrossCreases(BundleNodes(push.nodeAddress), BundleHeads(push.headAddress),
+                                                   BundleHitPayload(push.hitAddress), ownTriangle, frame, bundlePixel,
+                                                   x, depth, n, s.side, unusedCrossing, unusedHitPixel) != kBundleNil;
     }
     // The map keeps the surface nearest the light (bundle/DepthMapVisibility.glsl): only the
     // direction toward omega can be tested.
@@ -97,7 +101,9 @@ void main() {
         layers[l] = vec3(0.0);
     }
     vec3 albedo = imageLoad(gbuffer[kGBufferAlbedo], pixel).rgb;
-    if (s.usable && !occluded(s, bundlePixel, position, depth, n)) {
+    vec2 unusedBarycentrics;
+    uint ownTriangle = blGBufferSurface(pixel, unusedBarycentrics);
+    if (s.usable && !occluded(s, bundlePixel, position, depth, n, ownTriangle)) {
         vec3 wo = normalize(camera.position - position);
         layers[kPathDirect] = blBundleLightContribution(s, materials[uint(normalMaterial.w)], albedo, n, wo);
     }
