@@ -53,7 +53,9 @@ struct ImageSet {
 
 // How a bundle check's replay answers visibility (SettingTrades.cpp, bundleVisibilityError):
 // ListAlongFacetPlanes, every fragment but x's own triangle on its facet's plane where it lies
-// ahead of x's (the walks with hit payloads: multibounce, bidir, skylight; bundle/Traversal.glsl);
+// ahead of x's, and where that finds nothing the near end's contact taps behind their gate (the
+// walks with hit payloads: multibounce, bidir, skylight; bundle/Traversal.glsl,
+// shared/BundleContacts.h);
 // DepthMapNearestLight, a depth map's one surface nearest the light, with its facet's plane
 // (bundle/DepthMapVisibility.glsl: raster's environment maps, skylight's visibility = depth_map;
 // atlas, whose sorted lists exchange along exact centre rays).

@@ -228,40 +228,42 @@ TradeError shadowCubeError(const EmbreeScene& rt, const std::vector<ViewPoint>& 
 // (bundle/Traversal.glsl, blBundleSurfaceNearestAcrossCreases, with the rules of
 // shared/BundleContacts.h): the three other pixels of x's footprint toward the quarter of its pixel
 // x lies in (stepX, stepY), each fragment of theirs ahead of x by rules (a) to (c), where x's own
-// centre ray (`hits`, depths `back` before its point at x's depth) leaves the neighbourhood open.
+// centre ray (`hits`, depths `back` before its point at x's depth) leaves the neighbourhood open to
+// it (blBundleNearEndOpen).
 bool contactTapsHide(const EmbreeScene& rt, const ViewPoint& v, const std::vector<EmbreeScene::RayHit>& hits,
                      const glm::vec3& centrePoint, float back, const glm::vec3& omega, const glm::vec3& e,
                      const glm::vec3& d, const glm::vec3& lit, float litCosine, float epsilon, float pixel,
                      const glm::vec3& ax, const glm::vec3& ay, float stepX, float stepY) {
-    const auto own = [&](const EmbreeScene::RayHit& h) { return h.mesh == v.mesh && h.triangle == v.triangle; };
     const float dir = glm::dot(d, omega) >= 0.0f ? 1.0f : -1.0f;
     const float reach = shader::blBundleReach(pixel, glm::dot(v.normal, omega));
     const float lateralSquared = glm::dot(e, e);
-    std::vector<glm::vec3> near;
-    bool roomAround = false;
-    for (const EmbreeScene::RayHit& h : hits) {
-        const glm::vec3 point = centrePoint + (h.t - back) * omega;
-        // Nothing was found: the walk's distance is unbounded.
-        const std::uint32_t kind =
-            shader::blBundleNearFragment(point, h.geometricNormal, h.t - back, lateralSquared, v.position, d, dir, lit,
-                                         litCosine, epsilon, reach, std::numeric_limits<float>::infinity());
-        roomAround = roomAround || kind == shader::kBundleFragmentRoom;
-        if (kind == shader::kBundleFragmentNeighbour && near.size() < 4) near.push_back(point);
-    }
+    const auto nearEndOpen = [&](const glm::vec3& point, const glm::vec3& m) {
+        const float tolerance = epsilon * std::abs(glm::dot(m, d));
+        bool neighbourOnXsSide = false;
+        for (const EmbreeScene::RayHit& h : hits) {
+            const glm::vec3 fragment = centrePoint + (h.t - back) * omega;
+            // x's own list found nothing: the walk's distance is unbounded.
+            const std::uint32_t kind = shader::blBundleNearFragment(
+                fragment, h.geometricNormal, h.t - back, lateralSquared, v.position, d, dir, lit, litCosine, epsilon,
+                reach, std::numeric_limits<float>::infinity());
+            if (kind == shader::kBundleFragmentRoom) return true;
+            neighbourOnXsSide = neighbourOnXsSide || (kind == shader::kBundleFragmentNeighbour &&
+                                                      shader::blBundleOnXsSide(fragment, point, m, v.position, tolerance));
+        }
+        return !neighbourOnXsSide;
+    };
     const glm::vec3 offsets[3] = {stepX * ax, stepY * ay, stepX * ax + stepY * ay};
     for (const glm::vec3& offset : offsets) {
         const glm::vec3 tapCentre = centrePoint + pixel * offset;
         for (const EmbreeScene::RayHit& h : rt.allHits(tapCentre - back * omega, omega, 2.0f * back)) {
             const glm::vec3 m = h.geometricNormal;
-            if (own(h) || std::abs(glm::dot(m, omega)) * shader::kBundleMaxOwnSurfaceTangent < 1.0f) continue;
+            if ((h.mesh == v.mesh && h.triangle == v.triangle) ||
+                std::abs(glm::dot(m, omega)) * shader::kBundleMaxOwnSurfaceTangent < 1.0f)
+                continue;
             const glm::vec3 point = tapCentre + (h.t - back) * omega;
-            if (shader::blBundleContactAhead(point, m, v.position, lit, litCosine, d, epsilon) < 0.0f) continue;
-            if (!shader::blBundleContactNearBoth(omega, pixel, point, m, v.position, lit)) continue;
-            const float tolerance = epsilon * std::abs(glm::dot(m, d));
-            const bool neighbourOnXsSide = std::any_of(near.begin(), near.end(), [&](const glm::vec3& q) {
-                return shader::blBundleOnXsSide(q, point, m, v.position, tolerance);
-            });
-            if (!neighbourOnXsSide || roomAround) return true;
+            if (shader::blBundleContactAhead(point, m, v.position, lit, litCosine, d, epsilon) >= 0.0f &&
+                shader::blBundleContactNearBoth(omega, pixel, point, m, v.position, lit) && nearEndOpen(point, m))
+                return true;
         }
     }
     return false;
@@ -320,7 +322,6 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
             const float back = glm::length(centrePoint - centre) + radius * 1.01f;
             const std::vector<EmbreeScene::RayHit> hits =
                 rt.allHits(centrePoint - back * omega, omega, 2.0f * back);
-            const float c = std::max(std::abs(cosine), 1.0f / shader::kBundleMaxOwnSurfaceTangent);
             const float epsilon = shader::blBundleOwnSurfaceTolerance(depthEpsilon, pixel, cosine);
             const auto distanceTo = [&](const EmbreeScene::RayHit& h, const glm::vec3& plane) {
                 return dir * shader::blBundlePlaneCrossing(omega, h.t - back, e, plane);
@@ -342,7 +343,8 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
                 float walkFound = std::numeric_limits<float>::infinity();
                 for (const EmbreeScene::RayHit& h : hits) {
                     const glm::vec3 point = centrePoint + (h.t - back) * omega;
-                    if (!own(h) && glm::dot(point - v.position, lit) > epsilon * c && beyond(h, h.geometricNormal))
+                    if (!own(h) && glm::dot(point - v.position, lit) > epsilon * std::abs(cosine) &&
+                        beyond(h, h.geometricNormal))
                         walkFound = std::min(walkFound, distanceTo(h, h.geometricNormal));
                 }
                 blocked = walkFound < std::numeric_limits<float>::infinity() ||

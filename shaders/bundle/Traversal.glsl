@@ -226,41 +226,33 @@ void blBundleContactTaps(BundleFrame frame, vec3 x, ivec2 pixel, out ivec2 taps[
     }
 }
 
-// What x's own centre ray shows near x, for the near end's gate (shared/BundleContacts.h,
-// blBundleNearFragment): the first kBundleNearPoints neighbours' centre-ray points and their count;
-// `roomAround`: a fragment of the list makes x's neighbourhood a room's.
-const uint kBundleNearPoints = 4u;
-uint blBundleListNearX(BundleNodes nodes, BundleHitPayload hits, uint head, BundleFrame frame, ivec2 pixel, vec3 x,
-                       float depth, vec3 d, vec3 lit, float litCosine, float epsilon, float reach, float walkFound,
-                       out vec3 near[kBundleNearPoints], out bool roomAround) {
+// The near end's gate for a tap's surface through `point` (normal m): whether x's own centre ray
+// leaves x's neighbourhood open to it (shared/BundleContacts.h, blBundleNearFragment): it shows a
+// room around x, or no neighbour on x's side of that plane. Asked only for a tap that meets rules
+// (a) to (c), which is rare: one more walk of x's list then. `walkFound`: what x's own list found,
+// along d.
+bool blBundleNearEndOpen(BundleNodes nodes, BundleHitPayload hits, uint head, BundleFrame frame, ivec2 pixel, vec3 x,
+                         float depth, vec3 d, vec3 lit, float litCosine, float epsilon, float reach, float walkFound,
+                         vec3 point, vec3 m) {
     vec3 ray = blBundlePixelRay(frame, vec2(pixel) + 0.5);
     vec3 e = x - (ray + depth * frame.direction);
     float lateralSquared = dot(e, e);
     float dir = dot(d, frame.direction) >= 0.0 ? 1.0 : -1.0;
-    uint count = 0u;
-    roomAround = false;
+    float tolerance = epsilon * abs(dot(m, d));
+    bool neighbourOnXsSide = false;
     for (uint i = head; i != kBundleNil;) {
         BundleNode node = nodes.nodes[i];
-        vec3 point = ray + node.depth * frame.direction;
-        uint kind = blBundleNearFragment(point, blUnpackOctahedral(hits.hits[i].plane), node.depth - depth,
+        vec3 fragment = ray + node.depth * frame.direction;
+        uint kind = blBundleNearFragment(fragment, blUnpackOctahedral(hits.hits[i].plane), node.depth - depth,
                                          lateralSquared, x, d, dir, lit, litCosine, epsilon, reach, walkFound);
-        roomAround = roomAround || kind == kBundleFragmentRoom;
-        if (kind == kBundleFragmentNeighbour && count < kBundleNearPoints) {
-            near[count++] = point;
-        }
-        i = node.next & kBundleIndexMask;
-    }
-    return count;
-}
-
-// Whether one of x's near points lies on x's side of the plane through `point` (normal m).
-bool blBundleNearXOnItsSide(vec3 near[kBundleNearPoints], uint count, vec3 point, vec3 m, vec3 x, float tolerance) {
-    for (uint k = 0u; k < count; ++k) {
-        if (blBundleOnXsSide(near[k], point, m, x, tolerance)) {
+        if (kind == kBundleFragmentRoom) {
             return true;
         }
+        neighbourOnXsSide = neighbourOnXsSide ||
+                            (kind == kBundleFragmentNeighbour && blBundleOnXsSide(fragment, point, m, x, tolerance));
+        i = node.next & kBundleIndexMask;
     }
-    return false;
+    return !neighbourOnXsSide;
 }
 
 // blBundleSurfaceNearest on a pool with hit payloads, with the footprint's taps (above) at both ends
@@ -285,12 +277,7 @@ uint blBundleSurfaceNearestAcrossCreases(BundleNodes nodes, BundleHeads heads, B
     // The far end: the own list's hit and its plane.
     bool found = best != kBundleNil;
     float bestDistance = found ? dir * (crossing - depth) : 3.0e38;
-    // x's neighbourhood as its own centre ray shows it (the near end's gate, below).
-    vec3 near[kBundleNearPoints];
     float reach = blBundleFootprintReach(frame, cosine);
-    bool roomAround;
-    uint nearCount = blBundleListNearX(nodes, hits, blBundleHead(heads, frame, pixel), frame, pixel, x, depth, d, lit,
-                                       abs(cosine), epsilon, reach, bestDistance, near, roomAround);
     vec3 hitPoint = found ? x + bestDistance * d : x;
     vec3 hitNormal = found ? blUnpackOctahedral(hits.hits[best].plane) : n;
     hitNormal = dot(hitNormal, d) > 0.0 ? -hitNormal : hitNormal; // toward x's side
@@ -321,10 +308,10 @@ uint blBundleSurfaceNearestAcrossCreases(BundleNodes nodes, BundleHeads heads, B
             // lies behind it, and its plane is crossed in the air above the edge).
             bool farEnd = found && distance < ownDistance && dot(point - hitPoint, hitNormal) > hitEpsilon &&
                           blBundleContactNearBoth(frame, point, m, hitPoint, hitNormal);
-            // The near end, behind its gate (shared/BundleContacts.h).
+            // The near end, behind its gate.
             bool nearEnd = blBundleContactNearBoth(frame, point, m, x, lit) &&
-                           (!blBundleNearXOnItsSide(near, nearCount, point, m, x, epsilon * abs(dot(m, d))) ||
-                            roomAround);
+                           blBundleNearEndOpen(nodes, hits, blBundleHead(heads, frame, pixel), frame, pixel, x, depth,
+                                               d, lit, abs(cosine), epsilon, reach, ownDistance, point, m);
             if (farEnd || nearEnd) {
                 best = index;
                 bestDistance = distance;

@@ -110,7 +110,6 @@ BL_INLINE uint blBundleNearFragment(vec3 point, vec3 m, float along, float later
     return crossing < walkFound - epsilon && !behind ? kBundleFragmentRoom : kBundleFragmentAway;
 }
 
-
 // Whether a neighbour's point `near` lies on x's side of the plane through `point` (normal m) by
 // more than `tolerance`.
 BL_INLINE bool blBundleOnXsSide(vec3 near, vec3 point, vec3 m, vec3 x, float tolerance) {

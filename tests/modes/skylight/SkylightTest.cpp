@@ -236,9 +236,10 @@ static double counter(const ImageSet& images, const std::string& name) {
     return 0.0;
 }
 
-// A 1024^2 bundle of ao-blocks needs ~530,000 nodes (4 MiB), four times what a 1 MiB cap holds,
-// in every direction (at 512^2 some directions fit): the cap forces tiles. The
-// tiles must be built (the counter says so) and give the image of the untiled bundle.
+// A 1024^2 bundle of ao-blocks needs ~530,000 nodes (21 MiB with the hit payload, 40 bytes a
+// node), twenty times what a 1 MiB cap holds: the cap forces tiles. The tiles must be built (the
+// counter says so) and give the image of the untiled bundle. (A tile asks no contact tap across
+// its seam, blBundleContactTaps: a point beside a seam keeps its own list's answer, here the same.)
 TEST_F(Skylight, TilesUnderAMemoryCapGiveTheSameImage) {
     Scene s = loadSmall("data/analytic/ao-blocks.toml", 48);
     auto renderSet = [&](const std::vector<std::string>& settings) {
