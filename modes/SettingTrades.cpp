@@ -224,6 +224,9 @@ TradeError shadowCubeError(const EmbreeScene& rt, const std::vector<ViewPoint>& 
     return acc.result();
 }
 
+// Whether a hit is x's own triangle, which the walks skip by identity.
+bool ownTriangle(const EmbreeScene::RayHit& h, const ViewPoint& v) { return h.mesh == v.mesh && h.triangle == v.triangle; }
+
 // Where x's own list found nothing: whether the contact taps at x's end of the walk hide it
 // (bundle/Traversal.glsl, blBundleSurfaceNearestAcrossCreases, with the rules of
 // shared/BundleContacts.h): the three other pixels of x's footprint toward the quarter of its pixel
@@ -257,8 +260,7 @@ bool contactTapsHide(const EmbreeScene& rt, const ViewPoint& v, const std::vecto
         const glm::vec3 tapCentre = centrePoint + pixel * offset;
         for (const EmbreeScene::RayHit& h : rt.allHits(tapCentre - back * omega, omega, 2.0f * back)) {
             const glm::vec3 m = h.geometricNormal;
-            if ((h.mesh == v.mesh && h.triangle == v.triangle) ||
-                std::abs(glm::dot(m, omega)) * shader::kBundleMaxOwnSurfaceTangent < 1.0f)
+            if (ownTriangle(h, v) || std::abs(glm::dot(m, omega)) * shader::kBundleMaxOwnSurfaceTangent < 1.0f)
                 continue;
             const glm::vec3 point = tapCentre + (h.t - back) * omega;
             if (shader::blBundleContactAhead(point, m, v.position, lit, litCosine, d, epsilon) >= 0.0f &&
@@ -337,13 +339,10 @@ TradeError bundleVisibilityError(const EmbreeScene& rt, const std::vector<ViewPo
                 }
             } else {
                 const glm::vec3 lit = glm::dot(v.normal, d) >= 0.0f ? v.normal : -v.normal;
-                const auto own = [&](const EmbreeScene::RayHit& h) {
-                    return h.mesh == v.mesh && h.triangle == v.triangle;
-                };
                 float walkFound = std::numeric_limits<float>::infinity();
                 for (const EmbreeScene::RayHit& h : hits) {
                     const glm::vec3 point = centrePoint + (h.t - back) * omega;
-                    if (!own(h) && glm::dot(point - v.position, lit) > epsilon * std::abs(cosine) &&
+                    if (!ownTriangle(h, v) && glm::dot(point - v.position, lit) > epsilon * std::abs(cosine) &&
                         beyond(h, h.geometricNormal))
                         walkFound = std::min(walkFound, distanceTo(h, h.geometricNormal));
                 }

@@ -81,10 +81,9 @@ uint blBundleSortedNearest(BundleNodes nodes, uint head, float d, float dir, flo
 // plane crosses at x's depth whatever its winding, the far face of a thin wall behind x, the
 // other wall of a corner whose plane the centre ray met beyond x's polygon behind x as well; a
 // fragment counts from blBundleSurfaceEpsilon past x on. m is the normal of the fragment's facet
-// from the hit payload (BundleHit::plane; its shading normal is not its plane on smooth meshes),
-// or, without a payload,
-// x's own normal n (every fragment taken parallel to x's plane: x's surface, coincident faces and
-// thin walls still right, a corner's other wall seen as the centre ray meets it).
+// from the hit payload (BundleHit::plane; its shading normal is not its plane on smooth meshes):
+// every walk's pool carries it (multibounce, bidir, skylight). Taken parallel to x's own plane
+// instead, a small concave facet beside x rose in front of it.
 
 // The depth at which x's own ray (x = the centre ray's point at x's depth + e, e perpendicular to
 // omega) crosses the plane with normal m through the centre ray's point at depth t. Grazing planes:
@@ -118,14 +117,14 @@ float blBundleSurfaceEpsilon(BundleFrame frame, float cosine) {
 // The next surface along dir * omega (dir = +1 or -1) from x (pixel and depth from blBundlePixel,
 // normal n of either sign), kBundleNil if none: the fragment whose plane x's own ray crosses
 // first beyond blBundleSurfaceEpsilon, faces ignored (reflection is two-sided; emission's front
-// face is the caller's test). `payload`: the pool has hit payloads (`hits`), whose facet normals
-// (BundleHit::plane) give the planes and whose ids let x's own triangle `own` be skipped by identity (kBundleNil: no
-// identity, e.g. splats, whose ids are point indices). Unsorted and sorted lists alike (the
+// face is the caller's test). The hit payloads (`hits`) give the fragments' facet planes
+// (BundleHit::plane), and their ids let x's own triangle `own` be skipped by identity (kBundleNil:
+// no identity, e.g. splats, whose ids are point indices). Unsorted and sorted lists alike (the
 // crossing order can differ from the list's by a fraction of a pixel: every node is looked at).
 // `crossing`: the depth at which x's ray meets the found fragment's plane, so the caller can put
 // the hit on x's own ray (x + (crossing - depth) omega): the fragment's centre-ray point can lie
 // across a wall from x where the wall meets x's surface within the pixel.
-uint blBundleSurfaceNearest(BundleNodes nodes, uint head, BundleHitPayload hits, bool payload, uint own,
+uint blBundleSurfaceNearest(BundleNodes nodes, uint head, BundleHitPayload hits, uint own,
                             BundleFrame frame, ivec2 pixel, vec3 x, float depth, vec3 n, float dir,
                             out float crossing) {
     vec3 e = blBundleCentreOffset(frame, pixel, x, depth);
@@ -140,19 +139,14 @@ uint blBundleSurfaceNearest(BundleNodes nodes, uint head, BundleHitPayload hits,
     crossing = depth;
     for (uint i = head; i != kBundleNil;) {
         BundleNode node = nodes.nodes[i];
-        vec3 m = n;
-        bool mine = false;
-        bool ahead = true;
-        if (payload) {
-            BundleHit hit = hits.hits[i];
-            m = blUnpackOctahedral(hit.plane);
-            mine = hit.id == own;
-            // A plane from the payload crosses x's ray ahead of x also where its fragment lies
-            // behind x's plane: the other face of a convex edge, sampled just past the edge, whose
-            // plane x's ray meets in the air beyond it. The fragment must lie ahead of x's plane
-            // (the contact taps' rule (a), below); without a payload (m = n) the crossing says that.
-            ahead = aheadAtX + dir * (node.depth - depth) * aheadPerDepth > epsilon * aheadPerDepth;
-        }
+        BundleHit hit = hits.hits[i];
+        vec3 m = blUnpackOctahedral(hit.plane);
+        bool mine = hit.id == own;
+        // A fragment's plane crosses x's ray ahead of x also where the fragment lies behind x's
+        // plane: the other face of a convex edge, sampled just past the edge, whose plane x's ray
+        // meets in the air beyond it. The fragment must lie ahead of x's plane (the contact taps'
+        // rule (a), below).
+        bool ahead = aheadAtX + dir * (node.depth - depth) * aheadPerDepth > epsilon * aheadPerDepth;
         float distance = dir * (blBundleCrossing(frame, node.depth, e, m) - depth);
         if (distance > epsilon && distance < bestDistance && !mine && ahead) {
             best = i;
@@ -268,7 +262,7 @@ uint blBundleSurfaceNearestAcrossCreases(BundleNodes nodes, BundleHeads heads, B
                                          BundleFrame frame, ivec2 pixel, vec3 x, float depth, vec3 n, float dir,
                                          out float crossing, out ivec2 hitPixel) {
     hitPixel = pixel;
-    uint best = blBundleSurfaceNearest(nodes, blBundleHead(heads, frame, pixel), hits, true, own, frame, pixel, x,
+    uint best = blBundleSurfaceNearest(nodes, blBundleHead(heads, frame, pixel), hits, own, frame, pixel, x,
                                        depth, n, dir, crossing);
     float cosine = dot(n, frame.direction);
     vec3 d = dir * frame.direction;

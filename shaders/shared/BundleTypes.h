@@ -48,7 +48,8 @@ struct BundleNode {
 BL_STATIC_ASSERT(sizeof(BundleNode) == 8, "BundleNode layout");
 
 // Payload "hit": what a consumer needs to shade a fragment without going back to the scene.
-// Written by the exact build variants (they know the triangle), 32 bytes per node beside the core.
+// Written by the exact rasterized build and the compute build (both know the triangle:
+// bundle/PoolHit.glsl), 32 bytes per node beside the core.
 struct BundleHit {
     uint normal;      // octahedral (2 x 16-bit snorm) shading normal in world space, as interpolated
                       // (not turned to any side: compare with the face bit or the query direction)

@@ -35,7 +35,7 @@ void main() {
         float crossing;
         ivec2 hitPixel;
         uint hit = push.box.centreOnly != 0u
-                       ? blBundleSurfaceNearest(nodes, blBundleHead(heads, frame, pixel), hits, true, kBundleNil, frame,
+                       ? blBundleSurfaceNearest(nodes, blBundleHead(heads, frame, pixel), hits, kBundleNil, frame,
                                                 pixel, x, depth, n, dir, crossing)
                        : blBundleSurfaceNearestAcrossCreases(nodes, heads, hits, kBundleNil, frame, pixel, x, depth, n,
                                                              dir, crossing, hitPixel);

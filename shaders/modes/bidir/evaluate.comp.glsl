@@ -75,20 +75,14 @@ bool gOutsideBundle = false;
 // surface, skipped by identity (blBundleSurfaceNearest).
 uint gOwnTriangle = kBundleNil;
 
-// The next surface from x along side * omega in bundle `slot`: with hit payloads across a closed
-// room's creases too (blBundleSurfaceNearestAcrossCreases; `hitPixel`: the pixel whose centre ray
-// holds it), else x's own pixel (blBundleSurfaceNearest, its planes taken parallel to x's).
+// The next surface from x along side * omega in bundle `slot`, across a closed room's creases too
+// (blBundleSurfaceNearestAcrossCreases; bidir's pools carry hit payloads; `hitPixel`: the pixel
+// whose centre ray holds it).
 uint bidirSurfaceNearest(BundleNodes nodes, uint slot, BundleFrame frame, ivec2 bundlePixel, vec3 x, float depth,
                          vec3 n, float side, out float crossing, out ivec2 hitPixel) {
-    BundleHeads heads = blBundlePoolHeads(push.pool, slot);
-    BundleHitPayload hits = BundleHitPayload(push.pool.payload);
-    hitPixel = bundlePixel;
-    if (push.pool.payloadKind == kBundlePayloadHit) {
-        return blBundleSurfaceNearestAcrossCreases(nodes, heads, hits, gOwnTriangle, frame, bundlePixel, x, depth, n,
-                                                   side, crossing, hitPixel);
-    }
-    return blBundleSurfaceNearest(nodes, blBundleHead(heads, frame, bundlePixel), hits, false, gOwnTriangle, frame,
-                                  bundlePixel, x, depth, n, side, crossing);
+    return blBundleSurfaceNearestAcrossCreases(nodes, blBundlePoolHeads(push.pool, slot),
+                                               BundleHitPayload(push.pool.payload), gOwnTriangle, frame, bundlePixel,
+                                               x, depth, n, side, crossing, hitPixel);
 }
 #include "modes/bidir/EnvironmentDirect.glsl"
 #include "modes/bidir/HitAlbedo.glsl"
